@@ -1,0 +1,284 @@
+"""Adaptive integration of one contact until the exit event of Eq. (9).
+
+Methods: 1 = explicit Dormand-Prince 5(4), 2 = implicit Rodas4, 0 = automatic:
+start explicit, switch to Rodas4 when the stiffness detector of Hairer & Wanner
+(IV.2) fires repeatedly, and back when h ||J|| shows the explicit pair would be
+stable at the current step.
+
+The exit is located on the dense output of the accepted step (first crossing of
+s(tau) = L0, scanning the step when s may cross and re-cross), then the step is
+retaken exactly to the located time, so the exit state has the method's full
+accuracy rather than the interpolant's.
+"""
+import math
+
+import numpy as np
+from numba import njit
+
+from . import dopri5, rodas4
+from .rhs import N_MOTION, N_STATE, copy_into, exit_gap, jacobian, rhs
+
+SAFETY = 0.9
+STIFF_HLAMBDA = 3.25  # DP5 stability boundary on the negative real axis (~3.3)
+STIFF_COUNT = 15
+NONSTIFF_HNORM = 2.0  # back to explicit when h ||J||_inf stays below this
+NONSTIFF_COUNT = 5
+SCAN_POINTS = 8
+# stats slots
+ST_ACC, ST_REJ, ST_RHS, ST_JAC, ST_LU, ST_SWITCH, ST_ACC_EXPL, ST_ACC_IMPL = range(8)
+N_STATS = 8
+
+
+@njit(cache=True, inline="always")
+def _err_norm(err, y, ynew, rtol, atol):
+    acc = 0.0
+    for i in range(N_STATE):
+        sc = atol + rtol * max(abs(y[i]), abs(ynew[i]))
+        if not np.isfinite(ynew[i]):
+            return np.inf
+        e = err[i] / sc
+        acc += e * e
+    v = math.sqrt(acc / N_STATE)
+    return v if np.isfinite(v) else np.inf
+
+
+@njit(cache=True)
+def _initial_step(y, f, P, rtol, atol, order, work, fwork):
+    """Hairer & Wanner's starting step (Solving ODEs I, II.4)."""
+    d0 = 0.0
+    d1 = 0.0
+    for i in range(N_STATE):
+        sc = atol + rtol * abs(y[i])
+        d0 += (y[i] / sc) ** 2
+        d1 += (f[i] / sc) ** 2
+    d0 = math.sqrt(d0 / N_STATE)
+    d1 = math.sqrt(d1 / N_STATE)
+    h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
+    for i in range(N_STATE):
+        work[i] = y[i] + h0 * f[i]
+    rhs(work, P, fwork)
+    d2 = 0.0
+    for i in range(N_STATE):
+        sc = atol + rtol * abs(y[i])
+        d2 += ((fwork[i] - f[i]) / sc) ** 2
+    d2 = math.sqrt(d2 / N_STATE) / h0
+    dm = max(d1, d2)
+    h1 = max(1e-6, h0 * 1e-3) if dm <= 1e-15 else (0.01 / dm) ** (1.0 / (order + 1))
+    return min(100 * h0, h1)
+
+
+@njit(cache=True, inline="always")
+def _hermite_x(y0, f0, y1, f1, h, th):
+    """Cubic Hermite interpolant of x: the dense output used with Rodas4 (order 3)."""
+    h00 = (1 + 2 * th) * (1 - th) ** 2
+    h10 = th * (1 - th) ** 2
+    h01 = th * th * (3 - 2 * th)
+    h11 = th * th * (th - 1)
+    return h00 * y0[0] + h10 * h * f0[0] + h01 * y1[0] + h11 * h * f1[0]
+
+
+@njit(cache=True, inline="always")
+def _gap_at(th, t, h, y, f, ynew, fnew, K, implicit, P):
+    if implicit:
+        x = _hermite_x(y, f, ynew, fnew, h, th)
+    else:
+        x = dopri5.dense_component(y, K, h, th, 0)
+    return exit_gap(t + th * h, x, P)
+
+
+@njit(cache=True)
+def _locate_exit(t, h, y, f, ynew, fnew, K, implicit, P):
+    """First theta in (0, 1] where the exit gap crosses zero, or -1 if none.
+
+    Scans the step when s(tau) ends above L0 or may have a maximum inside
+    (v_x crosses 1), then refines the first bracket by the Illinois method.
+    """
+    g1 = exit_gap(t + h, ynew[0], P)
+    may_peak = (y[2] < 1.0) and (ynew[2] > 1.0)
+    if g1 < 0.0 and not may_peak:
+        return -1.0
+    lo = 0.0
+    glo = exit_gap(t, y[0], P)
+    hi = -1.0
+    ghi = 0.0
+    for k in range(1, SCAN_POINTS + 1):
+        th = k / SCAN_POINTS
+        g = g1 if k == SCAN_POINTS else _gap_at(th, t, h, y, f, ynew, fnew, K, implicit, P)
+        if g >= 0.0:
+            hi = th
+            ghi = g
+            break
+        lo = th
+        glo = g
+    if hi < 0.0:
+        return -1.0
+    side = 0
+    for _ in range(200):
+        if hi - lo <= 4e-16 * hi:
+            break
+        th = (lo * ghi - hi * glo) / (ghi - glo)
+        if not (lo < th < hi):
+            th = 0.5 * (lo + hi)
+        g = _gap_at(th, t, h, y, f, ynew, fnew, K, implicit, P)
+        if g >= 0.0:
+            hi, ghi = th, g
+            if side == 1:
+                glo *= 0.5
+            side = 1
+        else:
+            lo, glo = th, g
+            if side == -1:
+                ghi *= 0.5
+            side = -1
+        if g == 0.0:
+            break
+    return hi
+
+
+@njit(cache=True, inline="always")
+def _jac_norm(J):
+    big = 0.0
+    for i in range(N_MOTION):
+        row = 0.0
+        for j in range(N_MOTION):
+            row += abs(J[i, j])
+        big = max(big, row)
+    return big
+
+
+@njit(cache=True)
+def _record(nodes, count, t, y, f):
+    if count == nodes.shape[0]:
+        bigger = np.empty((2 * nodes.shape[0], nodes.shape[1]))
+        for i in range(count):
+            copy_into(bigger[i], nodes[i])
+        nodes = bigger
+    nodes[count, 0] = t
+    for i in range(5):
+        nodes[count, 1 + i] = y[i]
+        nodes[count, 6 + i] = f[i]
+    return nodes, count + 1
+
+
+@njit(cache=True)
+def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
+    """Integrate from y0 until the exit event, a budget, or a failure.
+
+    Returns (status, t, y, stats, r_min, nodes, n_nodes); status codes are those of
+    ``model.results.STATUS``. ``nodes`` rows are (t, x, y, v_x, v_y, theta, and
+    their five derivatives) at every accepted step when ``record`` is set.
+    """
+    n = N_STATE
+    stats = np.zeros(N_STATS, np.int64)
+    y = y0.copy()
+    f = np.empty(n)
+    ynew = np.empty(n)
+    fnew = np.empty(n)
+    err = np.empty(n)
+    ystage = np.empty(n)
+    b = np.empty(n)
+    K = np.zeros((7, n))
+    Kr = np.zeros((6, n))
+    J = np.zeros((n, N_MOTION))
+    M = np.empty((N_MOTION, N_MOTION))
+    piv = np.zeros(N_MOTION, np.int64)
+    rhs(y, P, f)
+    implicit = method == 2
+    h = _initial_step(y, f, P, rtol, atol, 4 if implicit else 5, ystage, fnew)
+    stats[ST_RHS] += 2
+    nodes = np.empty((256 if record else 1, 11))
+    n_nodes = 0
+    if record:
+        nodes, n_nodes = _record(nodes, n_nodes, 0.0, y, f)
+    t = 0.0
+    r_min = math.hypot(y[0], y[1])
+    stiff = 0
+    nonstiff = 0
+    easy = 0
+    last_rejected = False
+    nonfinite = False
+    finishing = False
+    status = -1
+    while status < 0:
+        if stats[ST_ACC] + stats[ST_REJ] >= max_steps:
+            status = 1
+            break
+        if t >= tau_max:
+            status = 2
+            break
+        if h < 16.0 * 2.220446049250313e-16 * max(1.0, abs(t)):
+            status = 4 if nonfinite else 3
+            break
+        if implicit:
+            jacobian(y, P, J)
+            stats[ST_JAC] += 1
+            stats[ST_LU] += 1
+            stats[ST_RHS] += 5
+            ok = rodas4.step(y, f, h, P, J, M, piv, Kr, ynew, err, ystage, b)
+            en = _err_norm(err, y, ynew, rtol, atol) if ok else np.inf
+            expo = 1.0 / rodas4.ORDER
+            maxfac = 6.0
+        else:
+            dopri5.step(y, f, h, P, K, ynew, err, ystage)
+            stats[ST_RHS] += 6
+            en = _err_norm(err, y, ynew, rtol, atol)
+            expo = 1.0 / dopri5.ORDER
+            maxfac = 10.0
+        if en > 1.0 and not finishing:
+            stats[ST_REJ] += 1
+            nonfinite = en == np.inf
+            h *= 0.2 if nonfinite else max(0.2, SAFETY * en ** -expo)
+            last_rejected = True
+            continue
+        nonfinite = False
+        if implicit:
+            rhs(ynew, P, fnew)
+            stats[ST_RHS] += 1
+        else:
+            copy_into(fnew, K[6])
+        if finishing:
+            status = 0
+        else:
+            th = _locate_exit(t, h, y, f, ynew, fnew, K, implicit, P)
+            if th > 0.0:
+                # Retake this step exactly to the located exit time.
+                h = th * h
+                finishing = True
+                continue
+        stats[ST_ACC] += 1
+        stats[ST_ACC_IMPL if implicit else ST_ACC_EXPL] += 1
+        switched = False
+        if method == 0 and status < 0:
+            if implicit:
+                hnorm = h * _jac_norm(J)
+                easy = easy + 1 if hnorm < NONSTIFF_HNORM else 0
+                if easy >= NONSTIFF_COUNT:
+                    implicit = False
+                    switched = True
+            elif dopri5.stiffness_ratio(h, K, ynew, ystage) > STIFF_HLAMBDA:
+                nonstiff = 0
+                stiff += 1
+                if stiff >= STIFF_COUNT:
+                    implicit = True
+                    switched = True
+            else:
+                nonstiff += 1
+                if nonstiff >= 6:
+                    stiff = 0
+            if switched:
+                stats[ST_SWITCH] += 1
+                stiff = 0
+                nonstiff = 0
+                easy = 0
+        t += h
+        copy_into(y, ynew)
+        copy_into(f, fnew)
+        r_min = min(r_min, math.hypot(y[0], y[1]))
+        if record:
+            nodes, n_nodes = _record(nodes, n_nodes, t, y, f)
+        fac = maxfac if en == 0.0 else min(maxfac, SAFETY * en ** -expo)
+        if last_rejected:
+            fac = min(1.0, fac)
+        last_rejected = False
+        h *= fac
+    return status, t, y, stats, r_min, nodes, n_nodes

@@ -1,0 +1,63 @@
+"""The velocity-dependent friction law, Eq. (4), vectorised with numpy.
+
+    mu(v) = mu_s sin(A atan(zeta v - B (zeta v - atan(zeta v))))
+
+The compiled kernel has its own scalar copy; the tests check both agree.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .params import DEFAULTS, Params
+
+__all__ = ["mu", "mu0", "mu_over_s", "series_coefficients"]
+
+# Below this zeta*s the closed form of mu(s)/s is replaced by its Taylor series:
+# the series is exact to rounding there and has no 0/0 at s = 0.
+SERIES_BELOW = 1e-3
+
+
+def _consts(params: Params | None):
+    if params is None:
+        d = DEFAULTS
+        return d["mu_s"], d["A"], d["B"], d["zeta"]
+    return params.mu_s, params.A, params.B, params.zeta
+
+
+def mu(v, params: Params | None = None):
+    """Friction coefficient mu(v) of Eq. (4) for relative speed v >= 0 (in V0)."""
+    mu_s, A, B, zeta = _consts(params)
+    z = zeta * np.asarray(v, dtype=float)
+    return mu_s * np.sin(A * np.arctan(z - B * (z - np.arctan(z))))
+
+
+def mu0(params: Params | None = None) -> float:
+    """Rigid-contact friction coefficient mu0 = mu(1) (the slab speed), ~1.0085."""
+    return float(mu(1.0, params))
+
+
+def series_coefficients(A: float, B: float):
+    """Taylor coefficients c0, c2, c4, c6 of mu(s)/(mu_s zeta) in powers of z = zeta s."""
+    A2 = A * A
+    c2 = -A * (A2 + 2 * B + 2) / 6
+    c4 = A * (A2 * A2 + 20 * A2 * B + 20 * A2 + 64 * B + 24) / 120
+    c6 = -A * (A2**3 + 70 * A2 * A2 * B + 70 * A2 * A2 + 280 * A2 * B * B
+               + 1904 * A2 * B + 784 * A2 + 560 * B * B + 3408 * B + 720) / 5040
+    return A, c2, c4, c6
+
+
+def mu_over_s(s, params: Params | None = None):
+    """mu(s)/s, smooth and finite through s = 0 (limit mu_s A zeta).
+
+    The friction force is F_f = -f_N (mu(s)/s) v_R with s = |v_R|; writing it this
+    way keeps it smooth where the relative velocity vanishes.
+    """
+    mu_s, A, B, zeta = _consts(params)
+    s = np.asarray(s, dtype=float)
+    z = zeta * s
+    c0, c2, c4, c6 = series_coefficients(A, B)
+    z2 = z * z
+    series = mu_s * zeta * (c0 + z2 * (c2 + z2 * (c4 + z2 * c6)))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        closed = mu(s, params) / s
+    return np.where(z < SERIES_BELOW, series, closed)
