@@ -83,6 +83,18 @@ class Params:
         """Normal load carried by one support, f_N = beta F_N."""
         return self.beta * self.F_N
 
+    @property
+    def rest_position(self) -> tuple[float, float]:
+        """(cos theta0, sin theta0), exactly on the x-axis when theta0 is a multiple of pi.
+
+        sin(float(pi)) = 1.2e-16 would start the mass a hair off the axis; the exact
+        mirror-symmetric start keeps y = 0 for all time (MODEL.md, "Hard cases").
+        """
+        c, s = math.cos(self.theta0), math.sin(self.theta0)
+        if abs(s) < 4 * math.ulp(2 * math.pi):
+            s, c = 0.0, math.copysign(1.0, c)
+        return c, s
+
     def replace(self, **changes) -> "Params":
         """A copy with some fields changed (validated again)."""
         return replace(self, **changes)

@@ -58,7 +58,7 @@ def integrate_reference(params: Params, options: SolverOptions, dense: bool = Fa
             raise _Budget
         return fun(t, u)
 
-    x0 = math.cos(params.theta0)
+    x0, y0 = params.rest_position
 
     def exit_event(t, u):
         return t - (u[0] - x0) - params.L0
@@ -66,7 +66,7 @@ def integrate_reference(params: Params, options: SolverOptions, dense: bool = Fa
     exit_event.terminal = True
     exit_event.direction = 1
     u0 = np.zeros(11)
-    u0[:5] = [x0, math.sin(params.theta0), 0.0, 0.0, params.theta0]
+    u0[:5] = [x0, y0, 0.0, 0.0, params.theta0]
     try:
         sol = solve_ivp(counted, (0.0, options.tau_max), u0, method="DOP853", rtol=options.rtol,
                         atol=options.atol, events=exit_event, dense_output=dense)

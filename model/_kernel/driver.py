@@ -198,6 +198,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
     last_rejected = False
     nonfinite = False
     finishing = False
+    fell_back = False
     status = -1
     while status < 0:
         if stats[ST_ACC] + stats[ST_REJ] >= max_steps:
@@ -206,7 +207,15 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
         if t >= tau_max:
             status = 2
             break
-        if h < 16.0 * 2.220446049250313e-16 * max(1.0, abs(t)):
+        hmin = 16.0 * 2.220446049250313e-16 * max(1.0, abs(t))
+        if h < hmin:
+            if method == 0 and not fell_back:
+                # The other method may resolve what this one cannot (pivot passage).
+                fell_back = True
+                implicit = not implicit
+                stats[ST_SWITCH] += 1
+                h = 1e6 * hmin
+                continue
             status = 4 if nonfinite else 3
             break
         if implicit:
