@@ -5,6 +5,8 @@ Commands
 support
     Integrate one contact of one support and print its results (readable, or one JSON
     object with ``--json``).
+warmup
+    Compile the kernel into numba's on-disk cache (run once after installing).
 
 Exit codes: 0 success, 1 the integration ran but did not succeed (results are printed
 anyway), 2 bad usage (one line on stderr naming the offending flag).
@@ -32,7 +34,7 @@ PROG = "python -m model"
 FIELD_FLAGS = {
     "k_r": "--k-r", "k_theta": "--k-theta", "F_N": "--F-N", "theta0": "--theta0",
     "beta": "--beta", "rtol": "--rtol", "atol": "--atol", "method": "--method",
-    "max_steps": "--max-steps", "samples": "--samples",
+    "max_steps": "--max-steps", "samples": "--samples", "tau_max": "--tau-max",
 }
 
 
@@ -101,6 +103,8 @@ def _add_support(commands) -> None:
                         help="integrator (default auto: stiffness switching)")
     solver.add_argument("--max-steps", type=_whole, default=1_000_000, metavar="N",
                         help="step budget (default 1000000)")
+    solver.add_argument("--tau-max", type=_real, default=1e5, metavar="T",
+                        help="time budget in tau (default 1e5)")
     output = p.add_argument_group("output")
     output.add_argument("--json", action="store_true", help="print one JSON object")
     output.add_argument("--samples", type=_whole, default=0, metavar="N",
@@ -120,7 +124,7 @@ def _support_inputs(args) -> tuple[Params, SolverOptions]:
     try:
         params = Params(k_r=k_r, k_theta=k_theta, F_N=args.F_N, theta0=args.theta0, beta=args.beta)
         options = SolverOptions(rtol=args.rtol, atol=args.atol, method=args.method,
-                                max_steps=args.max_steps)
+                                max_steps=args.max_steps, tau_max=args.tau_max)
     except ValueError as error:
         raise UsageError(_flag_of(error), str(error)) from None
     return params, options
@@ -132,7 +136,7 @@ def _run_support(args) -> int:
     try:
         result = simulate_support(params, rtol=options.rtol, atol=options.atol,
                                   method=options.method, samples=args.samples,
-                                  max_steps=options.max_steps)
+                                  max_steps=options.max_steps, tau_max=options.tau_max)
     except ValueError as error:  # an input only simulate_support checks (samples)
         flag = _flag_of(error)
         if flag is None:
@@ -225,11 +229,29 @@ def _summary(result, samples: int) -> str:
     ]
     solver = [("rtol", o.rtol, "relative tolerance"),
               ("atol", o.atol, "absolute tolerance"),
-              ("max_steps", o.max_steps, "step budget")]
+              ("max_steps", o.max_steps, "step budget"),
+              ("tau_max", o.tau_max, "time budget")]
     solver += [(str(k), v, "") for k, v in result.stats.items()]
     if samples:
         solver.append(("samples", samples, "time-series samples (printed with --json)"))
     return _table([("Parameters (dimensionless)", params), ("Results", results), ("Solver", solver)])
+
+
+# --------------------------------------------------------------------------- warmup
+
+def _add_warmup(commands) -> None:
+    p = commands.add_parser(
+        "warmup", help="compile the kernel into numba's on-disk cache",
+        description="Compile every integrator path (or load it from the cache) and report the "
+                    "time taken; run once after installing so the first trajectory is fast.")
+    p.set_defaults(run=_run_warmup)
+
+
+def _run_warmup(args) -> int:
+    from ._kernel import warmup
+
+    print(f"kernel ready in {warmup():.2f} s")
+    return 0
 
 
 # --------------------------------------------------------------------------- entry point
@@ -245,6 +267,7 @@ def build_parser() -> CommandParser:
                "printed anyway), 2 bad usage.")
     commands = parser.add_subparsers(title="commands", metavar="command", dest="command")
     _add_support(commands)
+    _add_warmup(commands)
     return parser
 
 

@@ -4,6 +4,8 @@ Coefficients: J. R. Dormand, P. J. Prince, J. Comput. Appl. Math. 6 (1980); the
 dense-output matrix is Shampine's (Math. Comp. 46, 1986), as used by scipy.
 ``tests/test_kernel.py`` checks them against scipy's copy.
 """
+import math
+
 import numpy as np
 from numba import njit
 
@@ -31,7 +33,7 @@ P_DENSE = np.array([
 ])
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def step(y, f, h, P, K, ynew, err, ystage):
     """One step of size h from (y, f = f(y)).
 
@@ -60,7 +62,7 @@ def step(y, f, h, P, K, ynew, err, ystage):
         err[i] = h * acc
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", inline="always")
 def dense_component(y, K, h, theta, i):
     """Component i of the 4th-order continuous extension at t0 + theta h."""
     acc = 0.0
@@ -70,7 +72,7 @@ def dense_component(y, K, h, theta, i):
     return y[i] + h * acc
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", inline="always")
 def stiffness_ratio(h, K, ynew, ystage):
     """h |lambda| estimated from stages 6 and 7, both at t0 + h (Hairer & Wanner, IV.2)."""
     num = 0.0
@@ -82,4 +84,4 @@ def stiffness_ratio(h, K, ynew, ystage):
         den += e * e
     if den <= 0.0:
         return 0.0
-    return h * np.sqrt(num / den)
+    return h * math.sqrt(num / den)

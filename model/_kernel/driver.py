@@ -29,20 +29,20 @@ ST_ACC, ST_REJ, ST_RHS, ST_JAC, ST_LU, ST_SWITCH, ST_ACC_EXPL, ST_ACC_IMPL = ran
 N_STATS = 8
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", inline="always")
 def _err_norm(err, y, ynew, rtol, atol):
     acc = 0.0
     for i in range(N_STATE):
         sc = atol + rtol * max(abs(y[i]), abs(ynew[i]))
-        if not np.isfinite(ynew[i]):
+        if not math.isfinite(ynew[i]):
             return np.inf
         e = err[i] / sc
         acc += e * e
     v = math.sqrt(acc / N_STATE)
-    return v if np.isfinite(v) else np.inf
+    return v if math.isfinite(v) else np.inf
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _initial_step(y, f, P, rtol, atol, order, work, fwork):
     """Hairer & Wanner's starting step (Solving ODEs I, II.4)."""
     d0 = 0.0
@@ -63,11 +63,11 @@ def _initial_step(y, f, P, rtol, atol, order, work, fwork):
         d2 += ((fwork[i] - f[i]) / sc) ** 2
     d2 = math.sqrt(d2 / N_STATE) / h0
     dm = max(d1, d2)
-    h1 = max(1e-6, h0 * 1e-3) if dm <= 1e-15 else (0.01 / dm) ** (1.0 / (order + 1))
+    h1 = max(1e-6, h0 * 1e-3) if dm <= 1e-15 else math.exp(math.log(0.01 / dm) / (order + 1))
     return min(100 * h0, h1)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", inline="always")
 def _hermite_x(y0, f0, y1, f1, h, th):
     """Cubic Hermite interpolant of x: the dense output used with Rodas4 (order 3)."""
     h00 = (1 + 2 * th) * (1 - th) ** 2
@@ -77,7 +77,7 @@ def _hermite_x(y0, f0, y1, f1, h, th):
     return h00 * y0[0] + h10 * h * f0[0] + h01 * y1[0] + h11 * h * f1[0]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", inline="always")
 def _gap_at(th, t, h, y, f, ynew, fnew, K, implicit, P):
     if implicit:
         x = _hermite_x(y, f, ynew, fnew, h, th)
@@ -86,7 +86,7 @@ def _gap_at(th, t, h, y, f, ynew, fnew, K, implicit, P):
     return exit_gap(t + th * h, x, P)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _locate_exit(t, h, y, f, ynew, fnew, K, implicit, P):
     """First theta in (0, 1] where the exit gap crosses zero, or -1 if none.
 
@@ -135,7 +135,7 @@ def _locate_exit(t, h, y, f, ynew, fnew, K, implicit, P):
     return hi
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", inline="always")
 def _jac_norm(J):
     big = 0.0
     for i in range(N_MOTION):
@@ -146,7 +146,7 @@ def _jac_norm(J):
     return big
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _record(nodes, count, t, y, f):
     if count == nodes.shape[0]:
         bigger = np.empty((2 * nodes.shape[0], nodes.shape[1]))
@@ -160,7 +160,7 @@ def _record(nodes, count, t, y, f):
     return nodes, count + 1
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
     """Integrate from y0 until the exit event, a budget, or a failure.
 
@@ -191,7 +191,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
     if record:
         nodes, n_nodes = _record(nodes, n_nodes, 0.0, y, f)
     t = 0.0
-    r_min = math.hypot(y[0], y[1])
+    r_min = math.sqrt(y[0] * y[0] + y[1] * y[1])
     stiff = 0
     nonstiff = 0
     easy = 0
@@ -236,7 +236,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
         if en > 1.0 and not finishing:
             stats[ST_REJ] += 1
             nonfinite = en == np.inf
-            h *= 0.2 if nonfinite else max(0.2, SAFETY * en ** -expo)
+            h *= 0.2 if nonfinite else max(0.2, SAFETY * math.exp(-expo * math.log(en)))
             last_rejected = True
             continue
         nonfinite = False
@@ -282,10 +282,10 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
         t += h
         copy_into(y, ynew)
         copy_into(f, fnew)
-        r_min = min(r_min, math.hypot(y[0], y[1]))
+        r_min = min(r_min, math.sqrt(y[0] * y[0] + y[1] * y[1]))
         if record:
             nodes, n_nodes = _record(nodes, n_nodes, t, y, f)
-        fac = maxfac if en == 0.0 else min(maxfac, SAFETY * en ** -expo)
+        fac = maxfac if en == 0.0 else min(maxfac, SAFETY * math.exp(-expo * math.log(en)))
         if last_rejected:
             fac = min(1.0, fac)
         last_rejected = False

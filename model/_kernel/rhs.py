@@ -26,14 +26,14 @@ N_PARAM = 15
 SERIES_BELOW = 1e-3
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", inline="always")
 def copy_into(dst, src):
     """dst[:] = src as a loop: numba's slice assignment compiles a costly error path."""
     for i in range(dst.shape[0]):
         dst[i] = src[i]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", inline="always")
 def mu_over_s(s, P):
     """m(s) = mu(s)/s of Eq. (4), smooth through s = 0."""
     z = P[ZETA] * s
@@ -44,7 +44,7 @@ def mu_over_s(s, P):
     return P[MU_S] * math.sin(P[A_] * math.atan(u)) / s
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def mu_over_s_and_slope(s, P):
     """m(s) = mu(s)/s and (dm/ds)/s, both smooth through s = 0 (for the Jacobian)."""
     zeta = P[ZETA]
@@ -52,7 +52,7 @@ def mu_over_s_and_slope(s, P):
     if z < SERIES_BELOW:
         z2 = z * z
         m = P[MU_S] * zeta * (P[C0] + z2 * (P[C2] + z2 * (P[C4] + z2 * P[C6])))
-        dm_s = P[MU_S] * zeta**3 * (2 * P[C2] + z2 * (4 * P[C4] + 6 * z2 * P[C6]))
+        dm_s = P[MU_S] * zeta * zeta * zeta * (2 * P[C2] + z2 * (4 * P[C4] + 6 * z2 * P[C6]))
         return m, dm_s
     u = z - P[B_] * (z - math.atan(z))
     Aw = P[A_] * math.atan(u)
@@ -62,7 +62,7 @@ def mu_over_s_and_slope(s, P):
     return mu / s, (dmu_ds * s - mu) / (s * s * s)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", inline="always")
 def _elastic(x, y, dth, P):
     """q = g(r)/r, p = -k_theta (theta - theta0)/r^2 with g(r) = -k_r (r-1) + phi(r).
 
@@ -79,7 +79,7 @@ def _elastic(x, y, dth, P):
     return g / r, -P[K_TH] * dth / r2, r, phi
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def rhs(u, P, out):
     """du/dtau for the 11-component state (Eqs. 5, 6 and the quadratures)."""
     x, y, vx, vy, th = u[0], u[1], u[2], u[3], u[4]
@@ -103,7 +103,7 @@ def rhs(u, P, out):
     out[10] = (r - 1.0) * (r - 1.0)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def jacobian(u, P, J):
     """J[i, j] = d(du_i/dtau)/du_j for all 11 rows and the 5 motion columns.
 
@@ -163,7 +163,7 @@ def jacobian(u, P, J):
     J[9, 4] = 2.0 * dth
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", inline="always")
 def exit_gap(t, x, P):
     """Slid distance minus L0, s(tau) - L0 with s = tau - (x - x0) (Eq. 9); >= 0 ends contact."""
     return t - (x - P[X0]) - P[L0]

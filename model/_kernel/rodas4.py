@@ -10,6 +10,8 @@ The Jacobian J is exact (``rhs.jacobian``). Only the 5x5 motion block is
 factorised: the quadrature rows have zero columns, so their stage values follow
 from the motion ones by a product (block elimination).
 """
+import math
+
 import numpy as np
 from numba import njit
 
@@ -36,7 +38,7 @@ C[5, 0], C[5, 1], C[5, 2], C[5, 3], C[5, 4] = (8.083246795921522, -7.98113298806
                                                -6.058818238834054)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def lu_factor(M, piv):
     """In-place LU with partial pivoting of the small dense matrix M; False if singular."""
     n = M.shape[0]
@@ -47,7 +49,7 @@ def lu_factor(M, piv):
             if abs(M[i, k]) > big:
                 big = abs(M[i, k])
                 p = i
-        if big == 0.0 or not np.isfinite(big):
+        if big == 0.0 or not math.isfinite(big):
             return False
         piv[k] = p
         if p != k:
@@ -60,7 +62,7 @@ def lu_factor(M, piv):
     return True
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", inline="always")
 def lu_solve(M, piv, b):
     """Solve in place with the factors of ``lu_factor``."""
     n = M.shape[0]
@@ -76,7 +78,7 @@ def lu_solve(M, piv, b):
         b[k] /= M[k, k]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", inline="always")
 def _solve_stage(M, piv, J, hg, b, k):
     """k = (I/(h gamma) - J)^-1 b for the block-triangular matrix (see module doc)."""
     for i in range(N_MOTION):
@@ -89,7 +91,7 @@ def _solve_stage(M, piv, J, hg, b, k):
         k[i] = hg * acc
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def step(y, f, h, P, J, M, piv, Kr, ynew, err, ystage, b):
     """One Rodas4 step of size h from (y, f = f(y)) with Jacobian J at y.
 
