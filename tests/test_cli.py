@@ -63,12 +63,14 @@ def test_solver_flags_reach_the_solver(capsys, monkeypatch):
 
     monkeypatch.setattr(cli, "simulate_support", recording)
     run(capsys, "support", "--regime", "stiff", "--rtol", "1e-9", "--atol", "1e-12",
-        "--method", "explicit", "--max-steps", "5e4")
+        "--method", "explicit", "--max-steps", "5e4", "--tau-max", "500")
     run(capsys, "support", "--regime", "stiff", "--beta", "0.5", "--rtol", "1e-4", "--samples", "3")
     assert calls == [
-        (REGIMES["stiff"], dict(rtol=1e-9, atol=1e-12, method="explicit", samples=0, max_steps=50_000)),
+        (REGIMES["stiff"], dict(rtol=1e-9, atol=1e-12, method="explicit", samples=0, max_steps=50_000,
+                                   tau_max=500.0)),
         (REGIMES["stiff"].replace(beta=0.5),
-         dict(rtol=1e-4, atol=1e-6, method="auto", samples=3, max_steps=1_000_000)),
+         dict(rtol=1e-4, atol=1e-6, method="auto", samples=3, max_steps=1_000_000,
+              tau_max=1e5)),
     ]
 
 
@@ -144,6 +146,7 @@ BAD = [
     (["--k-theta", "1"], "--k-r", "required unless --regime is given"),
     (["--k-r", "1"], "--k-theta", "required unless --regime is given"),
     (["--regime", "soft", "--k-r"], "--k-r", "expected one argument"),
+    (["--regime", "soft", "--tau-max", "0.5"], "--tau-max", "tau_max=0.5 is outside"),
 ]
 
 
@@ -179,3 +182,13 @@ def test_help_exits_0(capsys):
     for flag in ("--k-r", "--k-theta", "--F-N", "--theta0", "--beta", "--rtol", "--atol",
                  "--method", "--samples", "--max-steps", "--regime", "--json"):
         assert flag in out
+
+
+def test_warmup_reports_time(capsys):
+    code, out, _ = run(capsys, "warmup")
+    assert code == 0 and re.match(r"kernel ready in \d+\.\d\d s", out)
+
+
+def test_time_budget_flag(capsys):
+    code, out, _ = run(capsys, "support", "--regime", "soft", "--tau-max", "3", "--json")
+    assert code == 1 and json.loads(out)["status"] == 2
