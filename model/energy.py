@@ -30,8 +30,13 @@ def potential_energy(params: Params, r, theta):
             + 0.5 * np.exp(-r / params.lam))
 
 
-def elastic_energy(params: Params, r, theta):
-    """U_el: potential energy relative to the initial state (r = 1, theta = theta0)."""
+def elastic_energy(params: Params, r, theta, theta0=None):
+    """U_el: potential energy relative to the initial state (r = 1, theta = theta0).
+
+    ``theta0`` (array) overrides ``params.theta0`` for supports of several orientations.
+    """
+    if theta0 is not None:
+        theta = np.asarray(theta, dtype=float) - np.asarray(theta0, dtype=float) + params.theta0
     return potential_energy(params, r, theta) - potential_energy(params, 1.0, params.theta0)
 
 

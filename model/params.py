@@ -9,7 +9,9 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, fields, replace
 
-__all__ = ["Params", "REGIMES", "DEFAULTS"]
+import numpy as np
+
+__all__ = ["Params", "REGIMES", "DEFAULTS", "rest_positions"]
 
 #: Constants fixed by MODEL.md (friction law Eq. 4, repulsion Eq. 3, slab length).
 DEFAULTS = dict(mu_s=1.3, A=1.44, B=-20.0, zeta=10.0, lam=0.05, L0=10.0)
@@ -90,10 +92,8 @@ class Params:
         sin(float(pi)) = 1.2e-16 would start the mass a hair off the axis; the exact
         mirror-symmetric start keeps y = 0 for all time (MODEL.md, "Hard cases").
         """
-        c, s = math.cos(self.theta0), math.sin(self.theta0)
-        if abs(s) < 4 * math.ulp(2 * math.pi):
-            s, c = 0.0, math.copysign(1.0, c)
-        return c, s
+        x, y = rest_positions(self.theta0)
+        return float(x), float(y)
 
     def replace(self, **changes) -> "Params":
         """A copy with some fields changed (validated again)."""
@@ -110,6 +110,17 @@ class Params:
         except KeyError:
             raise ValueError(f"regime={name!r} is unknown; choose one of {sorted(REGIMES)}") from None
         return base.replace(**changes)
+
+
+def rest_positions(theta0):
+    """(cos theta0, sin theta0) for an array of orientations, exact on the x-axis.
+
+    Used by ``Params.rest_position`` and the batch paths, so both start identically.
+    """
+    theta0 = np.asarray(theta0, dtype=float)
+    x, y = np.cos(theta0), np.sin(theta0)
+    on_axis = np.abs(y) < 4 * math.ulp(2 * math.pi)
+    return np.where(on_axis, np.copysign(1.0, x), x), np.where(on_axis, 0.0, y)
 
 
 #: The four dynamic regimes of the paper (Fig. 6 caption), at F_N = 1, theta0 = pi/2.

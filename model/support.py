@@ -1,28 +1,19 @@
 """One support dragged by the slab: ``simulate_support`` (Eqs. 5-6, 8, 9, 12, 13)."""
 from __future__ import annotations
 
-import math
 from functools import lru_cache
 
 import numpy as np
 from scipy.interpolate import CubicHermiteSpline
 
-from . import _kernel
-from .energy import elastic_energy, kinetic_energy
+from .contacts import STAT_NAMES, Contacts, exit_quantities, run_contacts
 from .friction import mu_over_s
 from .options import SolverOptions
 from .params import Params
 from .reference import integrate_reference
 from .results import STATUS, SupportResult, TimeSeries
 
-__all__ = ["simulate_support", "PIVOT_RADIUS_OVER_LAMBDA"]
-
-#: A trajectory "approaches its pivot" when r < PIVOT_RADIUS_OVER_LAMBDA * lambda
-#: (0.01 at the default lambda = 0.05): there the repulsion of Eq. (3) dominates and
-#: the terms k_theta (theta - theta0)/r and theta' = (x v_y - y v_x)/r^2 grow without bound.
-PIVOT_RADIUS_OVER_LAMBDA = 0.2
-_STAT_NAMES = ("n_steps", "n_rejected", "n_rhs", "n_jac", "n_lu", "n_switches",
-               "n_steps_explicit", "n_steps_implicit")
+__all__ = ["simulate_support"]
 
 
 def simulate_support(params: Params, rtol: float = 1e-6, atol: float | None = None,
@@ -60,16 +51,15 @@ def _simulate(params: Params, options: SolverOptions, samples: int) -> SupportRe
     if options.method == "reference":
         status, t, y, stats, r_min, sol = integrate_reference(params, options, dense=samples > 0)
         stats["method"] = "reference (scipy DOP853)"
+        row = exit_quantities(params, options, np.array([params.theta0]), [status], [t], [y],
+                              np.zeros((1, len(STAT_NAMES)), np.int64), [r_min])
         series = _series_from_dense(params, sol, t, samples) if samples and status == 0 else None
     else:
-        status, t, y, st, r_min, nodes, n_nodes = _kernel.integrate(
-            _kernel.initial_state(params), _kernel.pack(params), options.rtol, options.atol,
-            _kernel.METHOD_CODES[options.method], options.max_steps, options.tau_max, samples > 0)
-        stats = {k: int(v) for k, v in zip(_STAT_NAMES, st)}
+        row, nodes = run_contacts(params, params.theta0, options, record=samples > 0)
+        stats = {k: int(v) for k, v in zip(STAT_NAMES, row.stats[0])}
         stats["method"] = _method_used(options.method, stats)
-        series = _series_from_nodes(params, nodes[:n_nodes], samples) if samples else None
-    return _assemble(params, options, int(status), float(t), np.asarray(y, dtype=float),
-                     stats, float(r_min), series)
+        series = _series_from_nodes(params, nodes, samples) if samples else None
+    return _assemble(row, stats, series)
 
 
 def _method_used(method: str, stats: dict) -> str:
@@ -80,28 +70,25 @@ def _method_used(method: str, stats: dict) -> str:
     return "auto (" + " + ".join(used) + f", {stats['n_switches']} switches)"
 
 
-def _assemble(params, options, status, t, y, stats, r_min, series) -> SupportResult:
-    """Quantities of Eqs. (8), (12), (13) from the exit state and the quadratures."""
-    x, yy, vx, vy, th, W, Iy, Dx, Dy, S_th, S_r = (float(v) for v in y)
-    r = math.hypot(x, yy)
-    U_el = float(elastic_energy(params, r, th))
-    K = float(kinetic_energy(vx, vy))
-    fN = params.f_N
-    F_mean = np.array([W, Iy]) / (t * fN) if t > 0 else np.full(2, np.nan)
-    pivot_radius = PIVOT_RADIUS_OVER_LAMBDA * params.lam
-    r_min = min(r_min, r) if math.isfinite(r) else r_min
-    approach = bool(r_min < pivot_radius)
-    state_out = np.array([x, yy, vx, vy, th])
+def _assemble(row: Contacts, stats: dict, series) -> SupportResult:
+    """The one-contact result from a one-row ``Contacts``."""
+    status = int(row.status[0])
+    r_min = float(row.r_min[0])
+    approach = bool(row.pivot_approach[0])
+    state_out = row.state_out[0].copy()
+    F_mean = np.array([row.F_x[0], row.F_y[0]])
     for a in (F_mean, state_out):
         a.flags.writeable = False
     return SupportResult(
-        params=params, options=options, success=status == 0, status=status,
-        message=_message(status, t, r_min, approach, pivot_radius, options),
-        t_out=t, state_out=state_out, F_mean=F_mean, W=W, D_x=Dx, D_y=Dy, U_el=U_el, K=K,
-        energy_residual=W - (Dx + Dy + U_el + K),
-        dtheta_rms=math.sqrt(max(S_th, 0.0) / t) if t > 0 else math.nan,
-        dr_rms=math.sqrt(max(S_r, 0.0) / t) if t > 0 else math.nan,
-        r_min=r_min, pivot_approach=approach, pivot_radius=pivot_radius,
+        params=row.params, options=row.options, success=status == 0, status=status,
+        message=_message(status, float(row.t_out[0]), r_min, approach, row.pivot_radius,
+                         row.options),
+        t_out=float(row.t_out[0]), state_out=state_out, F_mean=F_mean,
+        W=float(row.W[0]), D_x=float(row.D_x[0]), D_y=float(row.D_y[0]),
+        U_el=float(row.U_el[0]), K=float(row.K[0]),
+        energy_residual=float(row.energy_residual[0]),
+        dtheta_rms=float(row.dtheta_rms[0]), dr_rms=float(row.dr_rms[0]),
+        r_min=r_min, pivot_approach=approach, pivot_radius=row.pivot_radius,
         stats=stats, series=series)
 
 

@@ -6,11 +6,12 @@ Everything here takes plain floats and numpy arrays; ``model.support`` wraps it.
 import numpy as np
 
 from ..friction import series_coefficients
+from .batch import integrate_batch
 from .driver import N_STATS, integrate
-from .rhs import N_MOTION, N_PARAM, N_STATE, jacobian, mu_over_s, rhs
+from .rhs import N_MOTION, N_PARAM, N_STATE, TH0, X0, jacobian, mu_over_s, rhs
 
-__all__ = ["pack", "initial_state", "integrate", "warmup", "rhs", "jacobian", "mu_over_s",
-           "N_STATE", "N_MOTION", "N_STATS", "METHOD_CODES"]
+__all__ = ["pack", "initial_state", "integrate", "integrate_batch", "warmup", "rhs", "jacobian", "mu_over_s",
+           "N_STATE", "N_MOTION", "N_STATS", "METHOD_CODES", "TH0", "X0"]
 
 METHOD_CODES = {"auto": 0, "explicit": 1, "implicit": 2}
 
@@ -28,7 +29,8 @@ def warmup() -> float:
     start = time.perf_counter()
     params = REGIMES["soft"]
     for code in METHOD_CODES.values():
-        integrate(initial_state(params), pack(params), 1e-6, 1e-8, code, 100_000, 1e5, True)
+        integrate_batch(initial_state(params)[None], pack(params)[None], 1e-6, 1e-8, code,
+                        100_000, 1e5, True)
     return time.perf_counter() - start
 
 

@@ -1,0 +1,109 @@
+"""Many contacts at once: supports that differ only in theta0 (Eqs. 8, 12, 13).
+
+``run_contacts`` integrates them in one compiled call and turns the exit states and
+quadratures into per-contact quantities; ``simulate_support`` is its one-row case.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _kernel
+from .energy import elastic_energy, kinetic_energy
+from .options import SolverOptions
+from .params import Params, rest_positions
+
+__all__ = ["Contacts", "run_contacts", "PIVOT_RADIUS_OVER_LAMBDA"]
+
+#: A trajectory "approaches its pivot" when r < PIVOT_RADIUS_OVER_LAMBDA * lambda
+#: (0.01 at the default lambda = 0.05): there the repulsion of Eq. (3) dominates and
+#: the terms k_theta (theta - theta0)/r and theta' = (x v_y - y v_x)/r^2 grow without bound.
+PIVOT_RADIUS_OVER_LAMBDA = 0.2
+STAT_NAMES = ("n_steps", "n_rejected", "n_rhs", "n_jac", "n_lu", "n_switches",
+              "n_steps_explicit", "n_steps_implicit")
+# x, y, v_x, v_y, theta, W, I_y, D_x, D_y, S_theta, S_r (see model/_kernel/rhs.py)
+
+
+@dataclass(frozen=True)
+class Contacts:
+    """One row per contact; forces are time averages over f_N (Eq. 8), energies per contact.
+
+    ``status`` uses the codes of ``model.results.STATUS`` (0 = contact ended normally).
+    """
+
+    params: Params
+    options: SolverOptions
+    theta0: np.ndarray
+    status: np.ndarray
+    t_out: np.ndarray
+    state_out: np.ndarray
+    F_x: np.ndarray
+    F_y: np.ndarray
+    W: np.ndarray
+    D_x: np.ndarray
+    D_y: np.ndarray
+    U_el: np.ndarray
+    K: np.ndarray
+    energy_residual: np.ndarray
+    dtheta_rms: np.ndarray
+    dr_rms: np.ndarray
+    r_min: np.ndarray
+    pivot_approach: np.ndarray
+    stats: np.ndarray  # (m, 8) in the order of STAT_NAMES
+
+    @property
+    def ok(self) -> np.ndarray:
+        return self.status == 0
+
+    @property
+    def pivot_radius(self) -> float:
+        return PIVOT_RADIUS_OVER_LAMBDA * self.params.lam
+
+    @property
+    def n_rhs(self) -> int:
+        return int(self.stats[:, 2].sum())
+
+
+def run_contacts(params: Params, theta0, options: SolverOptions, record: bool = False):
+    """Integrate supports of orientations ``theta0`` (other parameters from ``params``).
+
+    Returns (Contacts, nodes): ``nodes`` are the step nodes of the last row when
+    ``record`` is set (for time series), else None.
+    """
+    theta0 = np.atleast_1d(np.asarray(theta0, dtype=float))
+    P = np.tile(_kernel.pack(params), (theta0.size, 1))
+    x0, y0 = rest_positions(theta0)
+    P[:, _kernel.TH0] = theta0
+    P[:, _kernel.X0] = x0
+    Y0 = np.zeros((theta0.size, _kernel.N_STATE))
+    Y0[:, 0], Y0[:, 1], Y0[:, 4] = x0, y0, theta0
+    status, t, Y, stats, r_min, nodes, n_nodes = _kernel.integrate_batch(
+        Y0, P, options.rtol, options.atol, _kernel.METHOD_CODES[options.method],
+        options.max_steps, options.tau_max, record)
+    contacts = exit_quantities(params, options, theta0, status, t, Y, stats, r_min)
+    return contacts, (nodes[:n_nodes] if record else None)
+
+
+def exit_quantities(params, options, theta0, status, t, Y, stats, r_min) -> Contacts:
+    """Per-contact quantities from exit states and quadratures (vectorised)."""
+    x, y, vx, vy, th, W, Iy, Dx, Dy, S_th, S_r = np.asarray(Y, dtype=float).T
+    r = np.hypot(x, y)
+    U_el = elastic_energy(params, r, th, theta0)
+    K = kinetic_energy(vx, vy)
+    t = np.asarray(t, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        scale = np.where(t > 0, 1.0 / t, np.nan)
+        F_x, F_y = W * scale / params.f_N, Iy * scale / params.f_N
+        dtheta_rms = np.sqrt(np.maximum(S_th, 0.0) * scale)
+        dr_rms = np.sqrt(np.maximum(S_r, 0.0) * scale)
+    r_min = np.fmin(np.asarray(r_min, dtype=float), r)
+    arrays = dict(
+        theta0=theta0, status=np.asarray(status), t_out=t, state_out=np.asarray(Y)[:, :5],
+        F_x=F_x, F_y=F_y, W=W, D_x=Dx, D_y=Dy, U_el=U_el, K=K,
+        energy_residual=W - (Dx + Dy + U_el + K), dtheta_rms=dtheta_rms, dr_rms=dr_rms,
+        r_min=r_min, pivot_approach=r_min < PIVOT_RADIUS_OVER_LAMBDA * params.lam,
+        stats=np.asarray(stats))
+    for a in arrays.values():
+        a.flags.writeable = False
+    return Contacts(params=params, options=options, **arrays)
