@@ -35,6 +35,7 @@ class Contacts:
     params: Params
     options: SolverOptions
     theta0: np.ndarray
+    beta: np.ndarray
     status: np.ndarray
     t_out: np.ndarray
     state_out: np.ndarray
@@ -65,28 +66,34 @@ class Contacts:
         return int(self.stats[:, 2].sum())
 
 
-def run_contacts(params: Params, theta0, options: SolverOptions, record: bool = False):
+def run_contacts(params: Params, theta0, options: SolverOptions, record: bool = False,
+                 beta=None):
     """Integrate supports of orientations ``theta0`` (other parameters from ``params``).
 
+    ``beta`` (array, optional) sets each row's load factor instead of ``params.beta``.
     Returns (Contacts, nodes): ``nodes`` are the step nodes of the last row when
     ``record`` is set (for time series), else None.
     """
     theta0 = np.atleast_1d(np.asarray(theta0, dtype=float))
+    beta = np.full(theta0.size, params.beta) if beta is None else np.asarray(beta, dtype=float)
     P = np.tile(_kernel.pack(params), (theta0.size, 1))
     x0, y0 = rest_positions(theta0)
     P[:, _kernel.TH0] = theta0
     P[:, _kernel.X0] = x0
+    P[:, _kernel.FN] = beta * params.F_N
     Y0 = np.zeros((theta0.size, _kernel.N_STATE))
     Y0[:, 0], Y0[:, 1], Y0[:, 4] = x0, y0, theta0
     status, t, Y, stats, r_min, nodes, n_nodes = _kernel.integrate_batch(
         Y0, P, options.rtol, options.atol, _kernel.METHOD_CODES[options.method],
         options.max_steps, options.tau_max, record)
-    contacts = exit_quantities(params, options, theta0, status, t, Y, stats, r_min)
+    contacts = exit_quantities(params, options, theta0, status, t, Y, stats, r_min, beta)
     return contacts, (nodes[:n_nodes] if record else None)
 
 
-def exit_quantities(params, options, theta0, status, t, Y, stats, r_min) -> Contacts:
+def exit_quantities(params, options, theta0, status, t, Y, stats, r_min, beta=None) -> Contacts:
     """Per-contact quantities from exit states and quadratures (vectorised)."""
+    beta = np.full(len(theta0), params.beta) if beta is None else np.asarray(beta, dtype=float)
+    f_N = beta * params.F_N
     x, y, vx, vy, th, W, Iy, Dx, Dy, S_th, S_r = np.asarray(Y, dtype=float).T
     r = np.hypot(x, y)
     U_el = elastic_energy(params, r, th, theta0)
@@ -94,12 +101,12 @@ def exit_quantities(params, options, theta0, status, t, Y, stats, r_min) -> Cont
     t = np.asarray(t, dtype=float)
     with np.errstate(divide="ignore", invalid="ignore"):
         scale = np.where(t > 0, 1.0 / t, np.nan)
-        F_x, F_y = W * scale / params.f_N, Iy * scale / params.f_N
+        F_x, F_y = W * scale / f_N, Iy * scale / f_N
         dtheta_rms = np.sqrt(np.maximum(S_th, 0.0) * scale)
         dr_rms = np.sqrt(np.maximum(S_r, 0.0) * scale)
     r_min = np.fmin(np.asarray(r_min, dtype=float), r)
     arrays = dict(
-        theta0=theta0, status=np.asarray(status), t_out=t, state_out=np.asarray(Y)[:, :5],
+        theta0=theta0, beta=beta, status=np.asarray(status), t_out=t, state_out=np.asarray(Y)[:, :5],
         F_x=F_x, F_y=F_y, W=W, D_x=Dx, D_y=Dy, U_el=U_el, K=K,
         energy_residual=W - (Dx + Dy + U_el + K), dtheta_rms=dtheta_rms, dr_rms=dr_rms,
         r_min=r_min, pivot_approach=r_min < PIVOT_RADIUS_OVER_LAMBDA * params.lam,
