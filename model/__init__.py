@@ -2,18 +2,23 @@
 
 A model of elastic micropillar supports dragged by a sliding slab (Sci. Rep. 11,
 8093, 2021): one support (Eqs. 1-6), its friction and energy per contact
-(Eqs. 8-13). Conventions are those of MODEL.md.
+(Eqs. 8-13), fixed-orientation arrays (Figs. 9-11) and uniform-orientation arrays with
+the self-consistent contact count (Figs. 5, 6, 8). Conventions are those of MODEL.md.
 
     >>> from model import Params, REGIMES, simulate_support
     >>> res = simulate_support(REGIMES["pendulum"])
     >>> res.F_mean        # time-averaged friction / f_N (Eq. 8)
 """
+from .fixed import FixedArrayResult, OrientationSweep, fixed_orientation, orientation_sweep
 from .friction import mu, mu0, mu_over_s
 from .options import METHODS, SolverOptions
 from .params import DEFAULTS, REGIMES, Params
 from .results import IntegrationError, SupportResult, TimeSeries
 from .support import simulate_support
+from .uniform import UniformArrayResult, uniform_array
 
 __all__ = ["Params", "REGIMES", "DEFAULTS", "SolverOptions", "METHODS", "simulate_support",
-           "SupportResult", "TimeSeries", "IntegrationError", "mu", "mu0", "mu_over_s"]
+           "SupportResult", "TimeSeries", "IntegrationError", "mu", "mu0", "mu_over_s",
+           "fixed_orientation", "orientation_sweep", "uniform_array", "FixedArrayResult",
+           "OrientationSweep", "UniformArrayResult"]
 __version__ = "0.1.0"
