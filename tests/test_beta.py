@@ -1,0 +1,71 @@
+"""The self-consistent load factor beta = L0/<tau_out>(beta)."""
+import math
+
+import numpy as np
+import pytest
+
+from model import REGIMES, fixed_orientation, simulate_support, uniform_array
+from model.beta import solve_beta, solve_beta_scalar
+
+
+def test_vectorised_solver_on_known_roots():
+    # tau(beta) = L0 (1 + k beta): beta (1 + k beta) = 1.
+    k = np.array([1.0, 3.0, 10.0])
+    sol = solve_beta(lambda b, rows: 10.0 * (1 + k[rows] * b), 10.0, 3)
+    np.testing.assert_allclose(sol.beta, (np.sqrt(1 + 4 * k) - 1) / (2 * k), rtol=1e-7)
+    assert np.all(sol.converged) and not np.any(sol.capped | sol.jump)
+
+
+def test_no_root_below_one_is_capped():
+    sol = solve_beta(lambda b, rows: np.full(b.size, 5.0), 10.0, 1)  # tau < L0 always
+    assert sol.capped[0] and sol.beta[0] == 1.0
+
+
+def test_discontinuity_is_reported_as_jump():
+    tau = lambda b, rows: np.where(b < 0.5, 10.0 / 0.8, 10.0 / 0.2)  # noqa: E731
+    sol = solve_beta(tau, 10.0, 1)
+    assert sol.jump[0] and abs(sol.beta[0] - 0.5) < 1e-6
+
+
+def test_scalar_solver_matches_vectorised():
+    tau = lambda b: 10.0 * (1 + 3.0 * b)  # noqa: E731
+    root = (math.sqrt(13) - 1) / 6
+    s = solve_beta_scalar(tau, 10.0, xtol=1e-12)
+    assert s.converged and not s.capped and s.beta == pytest.approx(root, rel=1e-10)
+    s2 = solve_beta_scalar(tau, 10.0, xtol=1e-12, guess=0.43)
+    assert s2.beta == pytest.approx(root, rel=1e-10) and s2.evaluations <= s.evaluations
+
+
+def _naive(next_beta, n):
+    beta, history = 1.0, []
+    for _ in range(n):
+        beta = min(1.0, next_beta(beta))
+        history.append(beta)
+    return np.array(history)
+
+
+def test_fixed_array_where_naive_iteration_two_cycles():
+    params = REGIMES["slider"]  # theta0 = pi/2: beta -> L0/tau_out(beta) has slope << -1
+    history = _naive(lambda b: params.L0 / simulate_support(params.replace(beta=b)).t_out, 30)
+    assert abs(history[-1] - history[-2]) > 0.5  # a 2-cycle, not a fixed point
+    assert history[-1] == pytest.approx(history[-3], rel=1e-6)
+    res = fixed_orientation(params)
+    tau = simulate_support(params.replace(beta=res.beta)).t_out
+    assert res.beta == pytest.approx(params.L0 / tau, rel=1e-7)
+    assert abs(res.beta_residual) < 1e-7 and res.success
+
+
+def test_uniform_array_where_naive_iteration_does_not_settle():
+    params = REGIMES["slider"]
+    history = _naive(lambda b: 1.0 / uniform_array(params, beta=b).Nc_over_Nc0, 10)
+    assert np.max(np.abs(np.diff(history[-4:]))) > 2e-3  # still oscillating
+    res = uniform_array(params)
+    assert abs(res.beta - 1.0 / res.Nc_over_Nc0) < 1e-4
+    assert abs(res.beta_residual) < 1e-4 and res.beta_iterations > 0
+
+
+@pytest.mark.parametrize("regime", ["pendulum", "stiff", "soft"])
+def test_self_consistent_beta_for_fixed_arrays(regime):
+    res = fixed_orientation(REGIMES[regime].replace(theta0=1.0))
+    assert 0 < res.beta <= 1 and res.beta == pytest.approx(1 / res.Nc_over_Nc0, rel=1e-7)
+    assert math.isclose(res.params.beta, res.beta)

@@ -1,0 +1,63 @@
+"""Fixed-orientation arrays and orientation sweeps (Figs. 9-11)."""
+import math
+
+import numpy as np
+import pytest
+
+from model import REGIMES, fixed_orientation, mu0, orientation_sweep, simulate_support
+
+THETA = np.linspace(0.1, math.pi - 0.1, 12)
+
+
+@pytest.mark.parametrize("regime", ["pendulum", "slider", "soft"])
+def test_even_and_odd_in_theta0(regime):
+    up = orientation_sweep(REGIMES[regime], THETA, beta=1.0)
+    down = orientation_sweep(REGIMES[regime], -THETA, beta=1.0)
+    np.testing.assert_allclose(down.FTx_over_mu0FN, up.FTx_over_mu0FN, rtol=1e-10)
+    np.testing.assert_allclose(down.FTy_over_mu0FN, -up.FTy_over_mu0FN, atol=1e-12)
+    np.testing.assert_allclose(down.Dy_over_Dx, up.Dy_over_Dx, rtol=1e-9)
+
+
+def test_sweep_matches_single_supports():
+    sweep = orientation_sweep(REGIMES["pendulum"], THETA, beta=0.7, rtol=1e-8)
+    m0 = mu0()
+    for i in (0, 5, 11):
+        one = simulate_support(REGIMES["pendulum"].replace(theta0=THETA[i], beta=0.7), rtol=1e-8)
+        assert sweep.FTx_over_mu0FN[i] == pytest.approx(one.F_mean[0] / m0, rel=1e-12)
+        assert sweep.Nc_over_Nc0[i] == pytest.approx(one.t_out / 10.0, rel=1e-12)
+
+
+def test_self_consistent_sweep_solves_every_orientation():
+    sweep = orientation_sweep(REGIMES["soft"], THETA)
+    np.testing.assert_allclose(sweep.beta, 1 / sweep.Nc_over_Nc0, rtol=1e-7)
+    assert np.all(np.abs(sweep.beta_residual) < 1e-7) and np.all(sweep.success)
+
+
+@pytest.mark.parametrize("regime", ["pendulum", "slider", "stiff", "soft"])
+def test_work_split_sums_to_one(regime):
+    res = fixed_orientation(REGIMES[regime].replace(theta0=2.0))
+    assert sum(res.work_split.values()) == pytest.approx(1.0, abs=1e-5)
+    assert res.work_split["D_x"] > 0 and res.work_split["D_y"] >= 0
+
+
+def test_fixed_result_fields():
+    res = fixed_orientation(REGIMES["stiff"], beta=1.0)
+    d = res.to_dict()
+    for key in ("FTx_over_mu0FN", "FTy_over_mu0FN", "Dy_over_Dx", "Nc_over_Nc0", "work_split",
+                "dtheta_rms", "dr_rms", "beta", "success", "message"):
+        assert key in d
+    assert res.beta == 1.0 and res.beta_residual == 0.0
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(beta="half"), "beta"), (dict(beta=1.5), "beta"), (dict(beta=0.0), "beta"),
+    (dict(rtol=1.0), "rtol"), (dict(method="euler"), "method")])
+def test_bad_input(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        fixed_orientation(REGIMES["stiff"], **kwargs)
+
+
+@pytest.mark.parametrize("theta0", [[], [float("nan")], [7.0]])
+def test_bad_orientations(theta0):
+    with pytest.raises(ValueError, match="theta0"):
+        orientation_sweep(REGIMES["stiff"], theta0)
