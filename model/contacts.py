@@ -76,8 +76,8 @@ def run_contacts(params: Params, theta0, options: SolverOptions, record: bool = 
     """
     theta0 = np.atleast_1d(np.asarray(theta0, dtype=float))
     beta = np.full(theta0.size, params.beta) if beta is None else np.asarray(beta, dtype=float)
-    P = np.tile(_kernel.pack(params), (theta0.size, 1))
     x0, y0 = rest_positions(theta0)
+    P = np.repeat(_kernel.pack(params, x0=0.0)[None, :], theta0.size, axis=0)
     P[:, _kernel.TH0] = theta0
     P[:, _kernel.X0] = x0
     P[:, _kernel.FN] = beta * params.F_N
@@ -99,11 +99,10 @@ def exit_quantities(params, options, theta0, status, t, Y, stats, r_min, beta=No
     U_el = elastic_energy(params, r, th, theta0)
     K = kinetic_energy(vx, vy)
     t = np.asarray(t, dtype=float)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        scale = np.where(t > 0, 1.0 / t, np.nan)
-        F_x, F_y = W * scale / f_N, Iy * scale / f_N
-        dtheta_rms = np.sqrt(np.maximum(S_th, 0.0) * scale)
-        dr_rms = np.sqrt(np.maximum(S_r, 0.0) * scale)
+    scale = 1.0 / np.where(t > 0, t, np.nan)  # time averages need tau_out > 0
+    F_x, F_y = W * scale / f_N, Iy * scale / f_N
+    dtheta_rms = np.sqrt(np.maximum(S_th, 0.0) * scale)
+    dr_rms = np.sqrt(np.maximum(S_r, 0.0) * scale)
     r_min = np.fmin(np.asarray(r_min, dtype=float), r)
     arrays = dict(
         theta0=theta0, beta=beta, status=np.asarray(status), t_out=t, state_out=np.asarray(Y)[:, :5],

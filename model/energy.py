@@ -11,6 +11,8 @@ integration error.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .params import Params
@@ -37,7 +39,8 @@ def elastic_energy(params: Params, r, theta, theta0=None):
     """
     if theta0 is not None:
         theta = np.asarray(theta, dtype=float) - np.asarray(theta0, dtype=float) + params.theta0
-    return potential_energy(params, r, theta) - potential_energy(params, 1.0, params.theta0)
+    # At the initial state only the repulsion term is non-zero: 1/2 exp(-1/lambda).
+    return potential_energy(params, r, theta) - 0.5 * math.exp(-1.0 / params.lam)
 
 
 def kinetic_energy(v_x, v_y):

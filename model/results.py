@@ -8,7 +8,7 @@ import numpy as np
 from .options import SolverOptions
 from .params import Params
 
-__all__ = ["SupportResult", "TimeSeries", "IntegrationError", "STATUS"]
+__all__ = ["SupportResult", "TimeSeries", "IntegrationError", "STATUS", "ACCURACY_FACTOR"]
 
 #: Status codes shared by the compiled kernel and the reference path.
 STATUS = {
@@ -18,6 +18,10 @@ STATUS = {
     3: "step size underflow",
     4: "non-finite state",
 }
+
+
+#: A result is flagged inaccurate when |W - (D_x + D_y + U_el + K)| > ACCURACY_FACTOR rtol W.
+ACCURACY_FACTOR = 3.0
 
 
 class IntegrationError(RuntimeError):
@@ -88,6 +92,16 @@ class SupportResult:
     def relative_energy_residual(self) -> float:
         return abs(self.energy_residual) / max(abs(self.W), 1e-300)
 
+    @property
+    def accurate(self) -> bool:
+        """False when the energy balance misses by more than ``ACCURACY_FACTOR`` rtol.
+
+        The balance holds exactly for the true solution, so a larger residual shows
+        that the integration error exceeds what was asked for (e.g. an explicit
+        method held at its stability limit on a stiff case at a loose tolerance).
+        """
+        return self.relative_energy_residual <= ACCURACY_FACTOR * max(self.options.rtol, 1e-9)
+
     def check(self) -> "SupportResult":
         """Return self, or raise ``IntegrationError`` when the run did not succeed."""
         if not self.success:
@@ -104,7 +118,7 @@ class SupportResult:
             "W": self.W, "D_x": self.D_x, "D_y": self.D_y, "U_el": self.U_el, "K": self.K,
             "energy_residual": self.energy_residual,
             "dtheta_rms": self.dtheta_rms, "dr_rms": self.dr_rms, "r_min": self.r_min,
-            "pivot_approach": self.pivot_approach,
+            "pivot_approach": self.pivot_approach, "accurate": self.accurate,
             "success": self.success, "status": self.status, "message": self.message,
             "stats": dict(self.stats),
             "params": self.params.as_dict(),

@@ -1,6 +1,7 @@
 """One support dragged by the slab: ``simulate_support`` (Eqs. 5-6, 8, 9, 12, 13)."""
 from __future__ import annotations
 
+from dataclasses import replace
 from functools import lru_cache
 
 import numpy as np
@@ -11,7 +12,7 @@ from .friction import mu_over_s
 from .options import SolverOptions
 from .params import Params
 from .reference import integrate_reference
-from .results import STATUS, SupportResult, TimeSeries
+from .results import ACCURACY_FACTOR, STATUS, SupportResult, TimeSeries
 
 __all__ = ["simulate_support"]
 
@@ -79,7 +80,7 @@ def _assemble(row: Contacts, stats: dict, series) -> SupportResult:
     F_mean = np.array([row.F_x[0], row.F_y[0]])
     for a in (F_mean, state_out):
         a.flags.writeable = False
-    return SupportResult(
+    result = SupportResult(
         params=row.params, options=row.options, success=status == 0, status=status,
         message=_message(status, float(row.t_out[0]), r_min, approach, row.pivot_radius,
                          row.options),
@@ -90,6 +91,12 @@ def _assemble(row: Contacts, stats: dict, series) -> SupportResult:
         dtheta_rms=float(row.dtheta_rms[0]), dr_rms=float(row.dr_rms[0]),
         r_min=r_min, pivot_approach=approach, pivot_radius=row.pivot_radius,
         stats=stats, series=series)
+    if result.success and not result.accurate:
+        warning = (f"; warning: the energy balance misses by {result.relative_energy_residual:.1e}"
+                   f" of W, more than {ACCURACY_FACTOR:g} rtol: the result is inaccurate; "
+                   "tighten rtol or use method='auto'")
+        result = replace(result, message=result.message + warning)
+    return result
 
 
 def _message(status, t, r_min, approach, pivot_radius, options) -> str:

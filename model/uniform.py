@@ -28,6 +28,7 @@ from .friction import mu0
 from .options import SolverOptions
 from .params import Params
 from .quadrature import W_K, integrate
+from .results import ACCURACY_FACTOR
 
 __all__ = ["UniformArrayResult", "uniform_array"]
 
@@ -181,6 +182,10 @@ def _result(params, quad, span, m0, counter, beta_iter, beta_res, options, secon
         message += (f"; {n_failed} of {quad.nodes.size} members did not finish their contact "
                     f"and took the values of their nearest neighbour in theta0")
     n_pivot = int(np.sum(pivot > 0))
+    n_inaccurate = int(np.sum(relres > ACCURACY_FACTOR * options.rtol))
+    if n_inaccurate:
+        message += (f"; {n_inaccurate} members miss the energy balance by more than "
+                    f"{ACCURACY_FACTOR:g} rtol (largest {np.nanmax(relres):.1e} of W)")
     if n_pivot:
         message += f"; {n_pivot} members were driven into the region of their pivot"
     integ = float(np.nanmax(relres))

@@ -190,3 +190,12 @@ def test_bad_solver_input_is_rejected(kwargs, match):
 def test_params_must_be_params():
     with pytest.raises(TypeError, match="Params"):
         simulate_support({"k_r": 1.0, "k_theta": 1.0})
+
+
+def test_inaccurate_result_is_flagged():
+    params = HARD["compliant F_N=10"]
+    junk = simulate_support(params, rtol=1e-3, method="explicit")  # held at its stability limit
+    assert junk.success and not junk.accurate and "inaccurate" in junk.message
+    assert abs(junk.t_out - simulate_support(params).t_out) > 10  # it really is wrong
+    good = simulate_support(params, rtol=1e-3)
+    assert good.accurate and "warning" not in good.message

@@ -34,10 +34,13 @@ def warmup() -> float:
     return time.perf_counter() - start
 
 
-def pack(params) -> np.ndarray:
-    """The kernel's parameter array for ``params`` (slots named in ``rhs``)."""
+def pack(params, x0=None) -> np.ndarray:
+    """The kernel's parameter array for ``params`` (slots named in ``rhs``).
+
+    ``x0`` (the rest position's x) may be given when the caller has it already.
+    """
     c0, c2, c4, c6 = series_coefficients(params.A, params.B)
-    x0 = params.rest_position[0]
+    x0 = params.rest_position[0] if x0 is None else x0
     P = np.array([params.k_r, params.k_theta, params.f_N, params.theta0, params.mu_s,
                   params.A, params.B, params.zeta, params.lam, params.L0,
                   c0, c2, c4, c6, x0], dtype=float)
