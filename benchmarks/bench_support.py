@@ -28,13 +28,13 @@ from pathlib import Path
 import numba
 import numpy as np
 import scipy
-from scipy.integrate import solve_ivp
 
 from model import REGIMES, Params, SolverOptions, simulate_support
 from model import _kernel
-from model.energy import elastic_energy, kinetic_energy
-from model.reference import reference_rhs
 from model.support import _simulate
+
+from plots import plot
+from scipy_baselines import score, sweep_scipy
 
 OURS = ("auto", "explicit", "implicit")
 SCIPY = {"full": ("RK45", "DOP853", "LSODA", "Radau"), "quick": ("RK45", "DOP853")}
@@ -71,13 +71,6 @@ def reference(name: str, params: Params, rtol: float, cache_file: Path) -> dict:
                   "seconds": time.perf_counter() - start, "n_rhs": res.stats["n_rhs"]}
     cache_file.write_text(json.dumps(cache, indent=1))
     return cache[key]
-
-
-def score(row: dict, t_out: float, state, ref: dict) -> dict:
-    """Add the errors against the reference to a successful run's row."""
-    row["error"] = float(np.max(np.abs(np.asarray(state[:5]) - ref["state_out"])))
-    row["t_error"] = abs(t_out - ref["t_out"])
-    return row
 
 
 def time_calls(fns: list, min_loop=0.02, repeats=5) -> list:
@@ -119,87 +112,6 @@ def sweep_ours(params: Params, rtols: list, ref: dict) -> dict:
                 calls[m] = functools.partial(_simulate.__wrapped__, params, options, 0)
         for m, seconds in zip(calls, time_calls(list(calls.values()))):
             rows[m][-1]["seconds"] = seconds
-    return rows
-
-
-class OverBudget(Exception):
-    """A scipy run went past its time limit."""
-
-
-def solve_scipy(params: Params, method: str, rtol: float, limit: float):
-    """solve_ivp on the reference right-hand side with the exit event of Eq. (9)."""
-    fun = reference_rhs(params)
-    deadline = time.perf_counter() + limit
-
-    def budgeted(t, u):
-        if time.perf_counter() > deadline:
-            raise OverBudget
-        return fun(t, u)
-
-    x0 = math.cos(params.theta0)
-
-    def exit_event(t, u):
-        return t - (u[0] - x0) - params.L0
-
-    exit_event.terminal = True
-    exit_event.direction = 1
-    u0 = np.zeros(11)
-    u0[:5] = [x0, math.sin(params.theta0), 0.0, 0.0, params.theta0]
-    return solve_ivp(budgeted, (0.0, TAU_MAX), u0, method=method, rtol=rtol, atol=rtol / 100,
-                     events=exit_event)
-
-
-def relative_energy(params: Params, u) -> float:
-    """|W - (D_x + D_y + U_el + K)| / |W| at the exit state u (11 components)."""
-    U = float(elastic_energy(params, math.hypot(u[0], u[1]), u[4]))
-    K = float(kinetic_energy(u[2], u[3]))
-    return abs(u[5] - (u[7] + u[8] + U + K)) / max(abs(u[5]), 1e-300)
-
-
-def timed_scipy(params, method, rtol, left, repeats):
-    """(solution, times of the completed runs, seconds spent); runs over 0.25 s are not repeated.
-
-    The solution is None when the first run went over the `left` seconds.
-    """
-    sol, done, spent = None, [], 0.0
-    while len(done) < repeats and (not done or done[-1] < 0.25):
-        start = time.perf_counter()
-        try:
-            sol = solve_scipy(params, method, rtol, left - spent)
-        except OverBudget:
-            spent += time.perf_counter() - start
-            break
-        done.append(time.perf_counter() - start)
-        spent += done[-1]
-    return sol, done, spent
-
-
-def sweep_scipy(params, method, rtols, ref, budget, repeats) -> list:
-    """The rtol sweep of one scipy method, within `budget` seconds of wall time.
-
-    A run is aborted when it would exceed what is left of the budget, and a tolerance
-    is skipped once the previous run took longer than what is left (a tighter
-    tolerance takes no less time).
-    """
-    rows, spent, last = [], 0.0, 0.0
-    for rtol in rtols:
-        row = {"method": method, "rtol": rtol, "success": False}
-        rows.append(row)
-        if last > budget - spent:
-            row["status"] = "skipped: over time budget"
-            continue
-        sol, times, used = timed_scipy(params, method, rtol, budget - spent, repeats)
-        spent += used
-        last = times[-1] if times else math.inf
-        if not times:
-            row.update(status=f"aborted: over time budget ({budget:g} s per sweep)", elapsed=used)
-        elif sol.status != 1:
-            row["status"] = f"no exit: {sol.message}"
-        else:
-            u = sol.y_events[0][0]
-            row.update(success=True, status="ok", seconds=statistics.median(times),
-                       n_rhs=int(sol.nfev), rel_energy=relative_energy(params, u))
-            score(row, float(sol.t_events[0][0]), u, ref)
     return rows
 
 
@@ -353,59 +265,6 @@ def report(info, results, methods, start, notes, cost, limit) -> tuple[str, str]
             for case, r in results.items()]
     return head, "\n\n".join(["# One support: speed against error", "\n".join(machine_lines), head,
                               *body]) + "\n"
-
-
-def plot_png(curves: dict, targets: dict, path: Path) -> None:
-    """Work-precision plot with matplotlib, one panel per case."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, len(curves), figsize=(5 * len(curves), 4), squeeze=False)
-    for ax, (case, lines) in zip(axes[0], curves.items()):
-        for m, pts in ((m, pts) for m, pts in lines.items() if pts):
-            ax.loglog(*zip(*sorted(pts)), "o-", label=m)
-        ax.axvline(targets[case], color="grey", ls=":")
-        ax.set(title=case, xlabel="max abs error of exit state", ylabel="s per trajectory")
-    axes[0][0].legend()
-    fig.tight_layout()
-    fig.savefig(path, dpi=100)
-
-
-def plot_html(curves: dict, targets: dict, path: Path) -> None:
-    """Work-precision plot with bokeh, one figure per case."""
-    from bokeh.io import save
-    from bokeh.layouts import column
-    from bokeh.models import Span
-    from bokeh.palettes import Category10
-    from bokeh.plotting import figure
-    from bokeh.resources import INLINE
-    figs = []
-    for case, lines in curves.items():
-        f = figure(title=case, x_axis_type="log", y_axis_type="log", width=700, height=400,
-                   x_axis_label="max abs error of exit state", y_axis_label="s per trajectory")
-        for (m, pts), color in ((mp, c) for mp, c in zip(lines.items(), Category10[10]) if mp[1]):
-            e, t = zip(*sorted(pts))
-            f.line(e, t, color=color, legend_label=m)
-            f.scatter(e, t, color=color, legend_label=m)
-        f.add_layout(Span(location=targets[case], dimension="height", line_dash="dotted"))
-        f.legend.click_policy = "hide"
-        figs.append(f)
-    save(column(*figs), filename=path, resources=INLINE, title="One support: work-precision")
-
-
-def plot(results: dict, out: Path) -> list:
-    """Write the plots that the installed libraries allow; return notes on the others."""
-    curves = {case: {m: [(r["error"], r["seconds"]) for r in rows if r["success"]]
-                     for m, rows in res["rows"].items()} for case, res in results.items()}
-    targets = {case: res["summary"]["target"] for case, res in results.items()}
-    notes = []
-    for name, writer, lib in (("work_precision.png", plot_png, "matplotlib"),
-                              ("work_precision.html", plot_html, "bokeh")):
-        try:
-            writer(curves, targets, out / name)
-        except ImportError:
-            notes.append(f"{lib} is not installed: no {name}")
-    return notes
 
 
 def main(argv=None) -> int:
