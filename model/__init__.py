@@ -15,10 +15,12 @@ from .options import METHODS, SolverOptions
 from .params import DEFAULTS, REGIMES, Params
 from .results import IntegrationError, SupportResult, TimeSeries
 from .support import simulate_support
+from .sweeps import SweepCancelled, SweepResult, load_sweep, orientation_table, regime_map, stiffness_sweep
 from .uniform import UniformArrayResult, uniform_array
 
 __all__ = ["Params", "REGIMES", "DEFAULTS", "SolverOptions", "METHODS", "simulate_support",
            "SupportResult", "TimeSeries", "IntegrationError", "mu", "mu0", "mu_over_s",
            "fixed_orientation", "orientation_sweep", "uniform_array", "FixedArrayResult",
-           "OrientationSweep", "UniformArrayResult"]
+           "OrientationSweep", "UniformArrayResult", "regime_map", "load_sweep",
+           "stiffness_sweep", "orientation_table", "SweepResult", "SweepCancelled"]
 __version__ = "0.1.0"

@@ -25,3 +25,17 @@ def reference():
         return res
 
     return solve
+
+
+@pytest.fixture(autouse=True, scope="session")
+def _private_disk_cache(tmp_path_factory):
+    """Keep the suite's disk cache out of the user's cache directory."""
+    import os
+
+    old = os.environ.get("MICROPILLAR_CACHE_DIR")
+    os.environ["MICROPILLAR_CACHE_DIR"] = str(tmp_path_factory.mktemp("disk-cache"))
+    yield
+    if old is None:
+        os.environ.pop("MICROPILLAR_CACHE_DIR", None)
+    else:
+        os.environ["MICROPILLAR_CACHE_DIR"] = old

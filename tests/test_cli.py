@@ -166,8 +166,8 @@ def test_unknown_flag_is_named(capsys):
 
 
 def test_unknown_command(capsys):
-    code, _, err = run(capsys, "sweep")
-    assert code == 2 and err.count("\n") == 1 and "invalid choice: 'sweep'" in err
+    code, _, err = run(capsys, "simulate")
+    assert code == 2 and err.count("\n") == 1 and "invalid choice: 'simulate'" in err
 
 
 def test_no_command_prints_help_and_exits_2(capsys):

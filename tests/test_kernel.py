@@ -7,7 +7,7 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.integrate._ivp.rk import RK45
 
-from model import REGIMES, Params, mu_over_s
+from model import REGIMES, mu_over_s
 from model import _kernel
 from model.reference import reference_rhs
 
