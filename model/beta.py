@@ -38,11 +38,19 @@ def solve_beta(mean_tau, L0: float, size: int, xtol: float = 1e-8, max_iter: int
     array) at the loads ``beta`` (same length).
     """
     every = np.arange(size)
-    lo = np.full(size, BETA_MIN)
     hi = np.ones(size)
+    tau_hi = mean_tau(hi, every)
+    g_hi = hi - L0 / tau_hi
+    # Where tau_out grows with the load, beta* = L0/tau(beta*) >= L0/tau(1): a much
+    # tighter lower end. Checked by its sign; BETA_MIN where the check fails.
+    lo = np.clip(L0 / tau_hi, BETA_MIN, 1.0)
     g_lo = lo - L0 / mean_tau(lo, every)
-    g_hi = hi - L0 / mean_tau(hi, every)
-    evaluations = 2
+    retry = ~(g_lo < 0)
+    if np.any(retry):
+        rows = np.flatnonzero(retry)
+        lo[rows] = BETA_MIN
+        g_lo[rows] = BETA_MIN - L0 / mean_tau(lo[rows], rows)
+    evaluations = 3
     capped = g_hi < 0  # the self-consistent beta would exceed 1: take beta = 1
     active = ~capped & (g_lo < 0)
     x, g_x = hi.copy(), g_hi.copy()

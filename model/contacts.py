@@ -74,8 +74,9 @@ def run_contacts(params: Params, theta0, options: SolverOptions, record: bool = 
     Returns (Contacts, nodes): ``nodes`` are the step nodes of the last row when
     ``record`` is set (for time series), else None.
     """
-    theta0 = np.atleast_1d(np.asarray(theta0, dtype=float))
-    beta = np.full(theta0.size, params.beta) if beta is None else np.asarray(beta, dtype=float)
+    # Copies: the result's arrays are made read-only, the caller's must not be.
+    theta0 = np.array(theta0, dtype=float, ndmin=1)
+    beta = np.full(theta0.size, params.beta) if beta is None else np.array(beta, dtype=float)
     x0, y0 = rest_positions(theta0)
     P = np.repeat(_kernel.pack(params, x0=0.0)[None, :], theta0.size, axis=0)
     P[:, _kernel.TH0] = theta0

@@ -61,3 +61,10 @@ def test_bad_input(kwargs, match):
 def test_bad_orientations(theta0):
     with pytest.raises(ValueError, match="theta0"):
         orientation_sweep(REGIMES["stiff"], theta0)
+
+
+def test_callers_arrays_stay_writable():
+    theta = np.array([0.5, 1.0])
+    orientation_sweep(REGIMES["stiff"], theta)
+    theta[0] = 0.6  # would raise if the sweep had frozen the caller's array
+    assert theta.flags.writeable
