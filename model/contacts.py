@@ -84,15 +84,28 @@ def run_contacts(params: Params, theta0, options: SolverOptions, record: bool = 
     P[:, _kernel.FN] = beta * params.F_N
     Y0 = np.zeros((theta0.size, _kernel.N_STATE))
     Y0[:, 0], Y0[:, 1], Y0[:, 4] = x0, y0, theta0
-    status, t, Y, stats, r_min, nodes, n_nodes = _kernel.integrate_batch(
+    status, t, Y, D, stats, r_min, nodes, n_nodes = _kernel.integrate_batch(
         Y0, P, options.rtol, options.atol, _kernel.METHOD_CODES[options.method],
         options.max_steps, options.tau_max, record)
-    contacts = exit_quantities(params, options, theta0, status, t, Y, stats, r_min, beta)
+    r_min = np.fmin(r_min, D[:, 7])
+    pivot = r_min < PIVOT_RADIUS_OVER_LAMBDA * params.lam
+    for a in (theta0, beta, status, t, Y, D, stats, r_min, pivot):
+        a.flags.writeable = False  # column views below inherit this
+    F_x, F_y, U_el, K, residual, dtheta_rms, dr_rms, _ = D.T
+    contacts = Contacts(
+        params=params, options=options, theta0=theta0, beta=beta, status=status, t_out=t,
+        state_out=Y[:, :5], F_x=F_x, F_y=F_y, W=Y[:, 5], D_x=Y[:, 7], D_y=Y[:, 8], U_el=U_el,
+        K=K, energy_residual=residual, dtheta_rms=dtheta_rms, dr_rms=dr_rms, r_min=r_min,
+        pivot_approach=pivot, stats=stats)
     return contacts, (nodes[:n_nodes] if record else None)
 
 
 def exit_quantities(params, options, theta0, status, t, Y, stats, r_min, beta=None) -> Contacts:
-    """Per-contact quantities from exit states and quadratures (vectorised)."""
+    """Per-contact quantities from exit states and quadratures, with numpy.
+
+    The kernel computes the same quantities itself (``_kernel.batch.derived``); this
+    independent version serves the scipy reference path and the tests.
+    """
     beta = np.full(len(theta0), params.beta) if beta is None else np.asarray(beta, dtype=float)
     f_N = beta * params.F_N
     x, y, vx, vy, th, W, Iy, Dx, Dy, S_th, S_r = np.asarray(Y, dtype=float).T

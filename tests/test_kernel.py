@@ -107,3 +107,20 @@ def test_empirical_convergence_order(step_fn, order, steps):
     errors = [_fixed_step_error(step_fn, n, params) for n in steps]
     slopes = -np.diff(np.log(errors)) / np.diff(np.log(steps))
     assert np.all(np.abs(slopes - order) < 0.3), (errors, slopes)
+
+
+def test_kernel_exit_quantities_match_numpy():
+    from model.contacts import exit_quantities, run_contacts
+    from model.options import SolverOptions
+
+    params = REGIMES["soft"].replace(F_N=2.0, beta=0.6)
+    theta0 = np.array([0.3, 1.7, 2.9])
+    options = SolverOptions(rtol=1e-7)
+    k, _ = run_contacts(params, theta0, options)
+    n = exit_quantities(params, options, theta0, k.status,
+                        k.t_out, np.column_stack([k.state_out, k.W, k.F_y * k.t_out * params.f_N,
+                                                  k.D_x, k.D_y, k.dtheta_rms**2 * k.t_out,
+                                                  k.dr_rms**2 * k.t_out]),
+                        k.stats, k.r_min)
+    for name in ("F_x", "F_y", "U_el", "K", "energy_residual", "dtheta_rms", "dr_rms"):
+        np.testing.assert_allclose(getattr(k, name), getattr(n, name), rtol=1e-12, atol=1e-14)

@@ -6,12 +6,12 @@ Everything here takes plain floats and numpy arrays; ``model.support`` wraps it.
 import numpy as np
 
 from ..friction import series_coefficients
-from .batch import integrate_batch
+from .batch import DERIVED, integrate_batch
 from .driver import N_STATS, integrate
 from .rhs import FN, N_MOTION, N_PARAM, N_STATE, TH0, X0, jacobian, mu_over_s, rhs
 
 __all__ = ["pack", "initial_state", "integrate", "integrate_batch", "warmup", "rhs", "jacobian", "mu_over_s",
-           "N_STATE", "N_MOTION", "N_STATS", "METHOD_CODES", "TH0", "X0", "FN"]
+           "N_STATE", "N_MOTION", "N_STATS", "METHOD_CODES", "TH0", "X0", "FN", "DERIVED"]
 
 METHOD_CODES = {"auto": 0, "explicit": 1, "implicit": 2}
 

@@ -1,23 +1,54 @@
 """Many contacts in one compiled call (orientation sweeps, array quadrature)."""
+import math
+
 import numpy as np
 from numba import njit
 
 from .driver import N_STATS, integrate
-from .rhs import N_STATE
+from .rhs import FN, K_R, K_TH, LAM, N_STATE, TH0
+
+#: Columns of the derived quantities returned per contact (see ``derived``).
+DERIVED = ("F_x", "F_y", "U_el", "K", "energy_residual", "dtheta_rms", "dr_rms", "r_out")
+
+
+@njit(cache=True, error_model="numpy")
+def derived(y, t, P, out):
+    """Eqs. (8), (12), (13) at the exit: mean friction over f_N, energies, residual, rms.
+
+    U_el is the potential energy of ``model.energy.elastic_energy`` (relative to the
+    initial state); the tests check the two agree.
+    """
+    x, yy, vx, vy, th = y[0], y[1], y[2], y[3], y[4]
+    r = math.sqrt(x * x + yy * yy)
+    dth = th - P[TH0]
+    lam = P[LAM]
+    U = (0.5 * P[K_R] * (r - 1.0) ** 2 + 0.5 * P[K_TH] * dth * dth
+         + 0.5 * (math.exp(-r / lam) - math.exp(-1.0 / lam)))
+    K = 0.5 * (vx * vx + vy * vy)
+    inv = 1.0 / t if t > 0.0 else math.nan
+    out[0] = y[5] * inv / P[FN]
+    out[1] = y[6] * inv / P[FN]
+    out[2] = U
+    out[3] = K
+    out[4] = y[5] - (y[7] + y[8] + U + K)
+    out[5] = math.sqrt(max(y[9], 0.0) * inv)
+    out[6] = math.sqrt(max(y[10], 0.0) * inv)
+    out[7] = r
 
 
 @njit(cache=True, error_model="numpy")
 def integrate_batch(Y0, Ps, rtol, atol, method, max_steps, tau_max, record):
     """Integrate row i from Y0[i] with parameters Ps[i].
 
-    Returns (status, t, Y, stats, r_min) stacked over the rows, and the step nodes
-    (see ``driver.integrate``) of the last row when ``record`` is set. This is the
-    kernel's only entry point, so it is compiled once.
+    Returns (status, t, Y, D, stats, r_min) stacked over the rows (D: the ``DERIVED``
+    quantities), and the step nodes (see ``driver.integrate``) of the last row when
+    ``record`` is set. This is the kernel's only entry point, so it is compiled once.
     """
     m = Y0.shape[0]
     status = np.empty(m, np.int64)
     t = np.empty(m)
     Y = np.empty((m, N_STATE))
+    D = np.empty((m, len(DERIVED)))
     stats = np.empty((m, N_STATS), np.int64)
     r_min = np.empty(m)
     nodes = np.empty((1, 11))
@@ -32,4 +63,5 @@ def integrate_batch(Y0, Ps, rtol, atol, method, max_steps, tau_max, record):
         for j in range(N_STATS):
             stats[i, j] = si[j]
         r_min[i] = ri
-    return status, t, Y, stats, r_min, nodes, n_nodes
+        derived(yi, ti, Ps[i], D[i])
+    return status, t, Y, D, stats, r_min, nodes, n_nodes
