@@ -82,6 +82,7 @@ def run_contacts(params: Params, theta0, options: SolverOptions, record: bool = 
     P[:, _kernel.TH0] = theta0
     P[:, _kernel.X0] = x0
     P[:, _kernel.FN] = beta * params.F_N
+    P[:, _kernel.REG] = y0 != 0.0  # no time regularisation on the exact axis
     Y0 = np.zeros((theta0.size, _kernel.N_STATE))
     Y0[:, 0], Y0[:, 1], Y0[:, 4] = x0, y0, theta0
     status, t, Y, D, stats, r_min, nodes, n_nodes = _kernel.integrate_batch(

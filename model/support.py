@@ -94,7 +94,8 @@ def _assemble(row: Contacts, stats: dict, series) -> SupportResult:
     if result.success and not result.accurate:
         warning = (f"; warning: the energy balance misses by {result.relative_energy_residual:.1e}"
                    f" of W, more than {ACCURACY_FACTOR:g} rtol: the result is inaccurate; "
-                   "tighten rtol or use method='auto'")
+                   + ("tighten rtol" if result.options.method == "auto"
+                      else "tighten rtol or use method='auto'"))
         result = replace(result, message=result.message + warning)
     return result
 
@@ -128,7 +129,10 @@ def _series(params, tau, x, y, vx, vy, theta) -> TimeSeries:
 
 def _series_from_nodes(params, nodes, samples) -> TimeSeries | None:
     """Uniform samples by cubic Hermite interpolation of the accepted steps."""
-    keep = np.concatenate(([True], np.diff(nodes[:, 0]) > 0))
+    # tau is non-decreasing but can stall at rounding level where the mass passes its
+    # pivot (dtau/ds = w ~ 0): keep the nodes that advance it.
+    tau = nodes[:, 0]
+    keep = np.concatenate(([True], tau[1:] > np.maximum.accumulate(tau)[:-1]))
     nodes = nodes[keep]
     if nodes.shape[0] < 2:
         return None

@@ -39,7 +39,9 @@ def test_jacobian_matches_finite_differences(state, regime):
     u = np.zeros(_kernel.N_STATE)
     u[:5] = state
     J = np.zeros((_kernel.N_STATE, _kernel.N_MOTION))
-    _kernel.jacobian(u, P, J)
+    f0 = np.empty(_kernel.N_STATE)
+    _kernel.rhs(u, P, f0)
+    _kernel.jacobian(u, P, f0, J)
     fp, fm = np.empty(_kernel.N_STATE), np.empty(_kernel.N_STATE)
     for j in range(_kernel.N_MOTION):
         h = 1e-6 * max(1.0, abs(u[j]))
@@ -61,7 +63,10 @@ def test_kernel_rhs_matches_reference_rhs():
         u = np.zeros(_kernel.N_STATE)
         u[:5] = state
         _kernel.rhs(u, P, out)
-        np.testing.assert_allclose(out, ref(0.0, u), rtol=1e-12, atol=1e-12)
+        # The kernel's derivatives are w(r) d/dtau (Sundman); out[11] = w.
+        np.testing.assert_allclose(out[:11] / out[11], ref(0.0, u[:11]), rtol=1e-12, atol=1e-12)
+        r = np.hypot(*state[:2])
+        assert 0 < out[11] <= 1 and 1 - out[11] <= 1.01 * (1e-6 / r) ** 2  # w = 1 - (R_S/r)^2
 
 
 @pytest.mark.parametrize("s", [0.0, 1e-12, 1e-6, 9.99e-5, 1.0001e-4, 1e-3, 0.05, 1.0, 30.0])
@@ -74,13 +79,14 @@ def _fixed_step_error(step_fn, n_steps, params, T=2.0):
     """Max error at tau = T after n fixed steps, against a tight DOP853 solution."""
     P = _kernel.pack(params)
     y = _kernel.initial_state(params)
-    exact = solve_ivp(reference_rhs(params), (0, T), y, method="DOP853", rtol=1e-13, atol=1e-14).y[:, -1]
+    exact = solve_ivp(reference_rhs(params), (0, 1.1 * T), y[:11], method="DOP853", rtol=1e-13,
+                      atol=1e-14, dense_output=True).sol
     h = T / n_steps
     f = np.empty(_kernel.N_STATE)
     for _ in range(n_steps):
         _kernel.rhs(y, P, f)
         y = step_fn(y, f, h, P)
-    return np.max(np.abs(y[:5] - exact[:5]))
+    return np.max(np.abs(y[:5] - exact(y[_kernel.TAU])[:5]))  # at the kernel's tau
 
 
 def _dp5(y, f, h, P):
@@ -92,7 +98,7 @@ def _dp5(y, f, h, P):
 def _rodas(y, f, h, P):
     n = y.size
     J = np.zeros((n, _kernel.N_MOTION))
-    _kernel.jacobian(y, P, J)
+    _kernel.jacobian(y, P, f, J)
     M, piv = np.empty((5, 5)), np.zeros(5, np.int64)
     Kr, ynew, err, ys, b = np.zeros((6, n)), np.empty(n), np.empty(n), np.empty(n), np.empty(n)
     assert rodas4.step(y, f, h, P, J, M, piv, Kr, ynew, err, ys, b)

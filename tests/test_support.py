@@ -199,3 +199,23 @@ def test_inaccurate_result_is_flagged():
     assert abs(junk.t_out - simulate_support(params).t_out) > 10  # it really is wrong
     good = simulate_support(params, rtol=1e-3)
     assert good.accurate and "warning" not in good.message
+
+
+@pytest.mark.parametrize("offset", [1e-7, 1e-9, 1e-12])
+@pytest.mark.parametrize("base", ["slider", "stiff F_N=3"])
+def test_pivot_bounce_below_time_resolution(base, offset):
+    # The bounce happens at r ~ 1e-13 ... 1e-22, below what tau resolves; the Sundman
+    # time transformation resolves it, and theta0 -> pi converges to one limit.
+    params = (SLIDER if base == "slider" else REGIMES["stiff"].replace(F_N=3.0))
+    near = simulate_support(params.replace(theta0=math.pi - offset), rtol=1e-8)
+    limit = simulate_support(params.replace(theta0=math.pi - 1e-6), rtol=1e-8)
+    assert near.success and near.accurate, near.message
+    assert near.pivot_approach and near.r_min < 1e-12
+    assert near.t_out == pytest.approx(limit.t_out, rel=1e-6)
+    assert near.F_mean[0] == pytest.approx(limit.F_mean[0], rel=1e-5)
+
+
+def test_compliant_large_load_near_pi_stays_explicit_at_the_pivot():
+    res = simulate_support(Params(k_r=0.01, k_theta=0.01, F_N=10.0, theta0=math.pi - 1e-9))
+    assert res.success and res.accurate, res.message
+    assert res.stats["n_steps"] < 20_000

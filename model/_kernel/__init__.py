@@ -3,17 +3,51 @@
 Everything here takes plain floats and numpy arrays; ``model.support`` wraps it.
 ``pack`` turns a ``Params`` into the flat array the kernel reads.
 """
+import hashlib
+from pathlib import Path
+
 import numpy as np
 
 from ..friction import series_coefficients
 from .batch import DERIVED, integrate_batch
 from .driver import N_STATS, integrate
-from .rhs import FN, N_MOTION, N_PARAM, N_STATE, TH0, X0, jacobian, mu_over_s, rhs
+from .rhs import FN, N_MOTION, N_PARAM, N_STATE, REG, TAU, TH0, X0, jacobian, mu_over_s, rhs
 
 __all__ = ["pack", "initial_state", "integrate", "integrate_batch", "warmup", "rhs", "jacobian", "mu_over_s",
-           "N_STATE", "N_MOTION", "N_STATS", "METHOD_CODES", "TH0", "X0", "FN", "DERIVED"]
+           "N_STATE", "N_MOTION", "N_STATS", "METHOD_CODES", "TH0", "X0", "FN", "TAU", "REG", "DERIVED"]
 
 METHOD_CODES = {"auto": 0, "explicit": 1, "implicit": 2}
+_MODULES = ("rhs", "dopri5", "rodas4", "driver", "batch")
+
+
+def _purge_stale_cache() -> None:
+    """Drop numba's cached kernel when any kernel source file changed.
+
+    numba checks only the source file of the cached function itself, so an edit of
+    ``driver.py`` would leave ``batch.integrate_batch`` (which inlines it) stale. A stamp
+    with the hash of every kernel module sits beside the cache; on a mismatch the
+    kernel's cache files are deleted and the kernel is compiled afresh.
+    """
+    here = Path(__file__).parent
+    digest = hashlib.sha256(b"".join((here / f"{m}.py").read_bytes() for m in _MODULES))
+    try:
+        cache_dir = Path(integrate_batch._cache._cache_path)
+    except AttributeError:  # numba internals changed: nothing to check
+        return
+    stamp = cache_dir / "micropillar-kernel.stamp"
+    try:
+        if stamp.is_file() and stamp.read_text() == digest.hexdigest():
+            return
+        for f in cache_dir.glob("*.nb[ic]"):
+            if f.name.split(".")[0] in _MODULES:
+                f.unlink()
+        cache_dir.mkdir(parents=True, exist_ok=True)
+        stamp.write_text(digest.hexdigest())
+    except OSError:  # a read-only cache: numba will compile in memory
+        pass
+
+
+_purge_stale_cache()
 
 
 def warmup() -> float:
@@ -41,9 +75,10 @@ def pack(params, x0=None) -> np.ndarray:
     """
     c0, c2, c4, c6 = series_coefficients(params.A, params.B)
     x0 = params.rest_position[0] if x0 is None else x0
+    on_axis = params.rest_position[1] == 0.0
     P = np.array([params.k_r, params.k_theta, params.f_N, params.theta0, params.mu_s,
                   params.A, params.B, params.zeta, params.lam, params.L0,
-                  c0, c2, c4, c6, x0], dtype=float)
+                  c0, c2, c4, c6, x0, 0.0 if on_axis else 1.0], dtype=float)
     assert P.size == N_PARAM
     return P
 

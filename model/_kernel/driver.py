@@ -16,13 +16,16 @@ import numpy as np
 from numba import njit
 
 from . import dopri5, rodas4
-from .rhs import N_MOTION, N_STATE, copy_into, exit_gap, jacobian, rhs
+from .rhs import N_MOTION, N_STATE, TAU, copy_into, exit_gap, jacobian, rhs
 
 SAFETY = 0.9
 STIFF_HLAMBDA = 3.25  # DP5 stability boundary on the negative real axis (~3.3)
 STIFF_COUNT = 15
 NONSTIFF_HNORM = 2.0  # back to explicit when h ||J||_inf stays below this
 NONSTIFF_COUNT = 5
+# Within this radius of the pivot the motion is fast and non-smooth (the cusp of the
+# repulsion, the torsional barrier): ``auto`` uses the explicit pair there.
+PIVOT_EXPLICIT = 1e-3
 SCAN_POINTS = 8
 # stats slots
 ST_ACC, ST_REJ, ST_RHS, ST_JAC, ST_LU, ST_SWITCH, ST_ACC_EXPL, ST_ACC_IMPL = range(8)
@@ -68,42 +71,44 @@ def _initial_step(y, f, P, rtol, atol, order, work, fwork):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _hermite_x(y0, f0, y1, f1, h, th):
-    """Cubic Hermite interpolant of x: the dense output used with Rodas4 (order 3)."""
+def _hermite(y0, f0, y1, f1, h, th, i):
+    """Cubic Hermite interpolant of component i: the dense output used with Rodas4."""
     h00 = (1 + 2 * th) * (1 - th) ** 2
     h10 = th * (1 - th) ** 2
     h01 = th * th * (3 - 2 * th)
     h11 = th * th * (th - 1)
-    return h00 * y0[0] + h10 * h * f0[0] + h01 * y1[0] + h11 * h * f1[0]
+    return h00 * y0[i] + h10 * h * f0[i] + h01 * y1[i] + h11 * h * f1[i]
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _gap_at(th, t, h, y, f, ynew, fnew, K, implicit, P):
+def _gap_at(th, h, y, f, ynew, fnew, K, implicit, P):
     if implicit:
-        x = _hermite_x(y, f, ynew, fnew, h, th)
+        x = _hermite(y, f, ynew, fnew, h, th, 0)
+        tau = _hermite(y, f, ynew, fnew, h, th, TAU)
     else:
         x = dopri5.dense_component(y, K, h, th, 0)
-    return exit_gap(t + th * h, x, P)
+        tau = dopri5.dense_component(y, K, h, th, TAU)
+    return exit_gap(tau, x, P)
 
 
 @njit(cache=True, error_model="numpy")
-def _locate_exit(t, h, y, f, ynew, fnew, K, implicit, P):
+def _locate_exit(h, y, f, ynew, fnew, K, implicit, P):
     """First theta in (0, 1] where the exit gap crosses zero, or -1 if none.
 
     Scans the step when s(tau) ends above L0 or may have a maximum inside
     (v_x crosses 1), then refines the first bracket by the Illinois method.
     """
-    g1 = exit_gap(t + h, ynew[0], P)
+    g1 = exit_gap(ynew[TAU], ynew[0], P)
     may_peak = (y[2] < 1.0) and (ynew[2] > 1.0)
     if g1 < 0.0 and not may_peak:
         return -1.0
     lo = 0.0
-    glo = exit_gap(t, y[0], P)
+    glo = exit_gap(y[TAU], y[0], P)
     hi = -1.0
     ghi = 0.0
     for k in range(1, SCAN_POINTS + 1):
         th = k / SCAN_POINTS
-        g = g1 if k == SCAN_POINTS else _gap_at(th, t, h, y, f, ynew, fnew, K, implicit, P)
+        g = g1 if k == SCAN_POINTS else _gap_at(th, h, y, f, ynew, fnew, K, implicit, P)
         if g >= 0.0:
             hi = th
             ghi = g
@@ -119,7 +124,7 @@ def _locate_exit(t, h, y, f, ynew, fnew, K, implicit, P):
         th = (lo * ghi - hi * glo) / (ghi - glo)
         if not (lo < th < hi):
             th = 0.5 * (lo + hi)
-        g = _gap_at(th, t, h, y, f, ynew, fnew, K, implicit, P)
+        g = _gap_at(th, h, y, f, ynew, fnew, K, implicit, P)
         if g >= 0.0:
             hi, ghi = th, g
             if side == 1:
@@ -147,16 +152,17 @@ def _jac_norm(J):
 
 
 @njit(cache=True, error_model="numpy")
-def _record(nodes, count, t, y, f):
+def _record(nodes, count, y, f):
+    """Append (tau, x, y, v_x, v_y, theta, and their tau-derivatives) to ``nodes``."""
     if count == nodes.shape[0]:
         bigger = np.empty((2 * nodes.shape[0], nodes.shape[1]))
         for i in range(count):
             copy_into(bigger[i], nodes[i])
         nodes = bigger
-    nodes[count, 0] = t
+    nodes[count, 0] = y[TAU]
     for i in range(5):
         nodes[count, 1 + i] = y[i]
-        nodes[count, 6 + i] = f[i]
+        nodes[count, 6 + i] = f[i] / f[TAU]  # d/dtau = (d/ds) / w
     return nodes, count + 1
 
 
@@ -189,7 +195,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
     nodes = np.empty((256 if record else 1, 11))
     n_nodes = 0
     if record:
-        nodes, n_nodes = _record(nodes, n_nodes, 0.0, y, f)
+        nodes, n_nodes = _record(nodes, n_nodes, y, f)
     t = 0.0
     r_min = math.sqrt(y[0] * y[0] + y[1] * y[1])
     stiff = 0
@@ -204,7 +210,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
         if stats[ST_ACC] + stats[ST_REJ] >= max_steps:
             status = 1
             break
-        if t >= tau_max:
+        if y[TAU] >= tau_max:
             status = 2
             break
         hmin = 16.0 * 2.220446049250313e-16 * max(1.0, abs(t))
@@ -219,7 +225,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
             status = 4 if nonfinite else 3
             break
         if implicit:
-            jacobian(y, P, J)
+            jacobian(y, P, f, J)
             stats[ST_JAC] += 1
             stats[ST_LU] += 1
             stats[ST_RHS] += 5
@@ -248,7 +254,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
         if finishing:
             status = 0
         else:
-            th = _locate_exit(t, h, y, f, ynew, fnew, K, implicit, P)
+            th = _locate_exit(h, y, f, ynew, fnew, K, implicit, P)
             if th > 0.0:
                 # Retake this step exactly to the located exit time.
                 h = th * h
@@ -257,7 +263,12 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
         stats[ST_ACC] += 1
         stats[ST_ACC_IMPL if implicit else ST_ACC_EXPL] += 1
         switched = False
-        if method == 0 and status < 0:
+        r_new = math.sqrt(ynew[0] * ynew[0] + ynew[1] * ynew[1])
+        if method == 0 and status < 0 and r_new < PIVOT_EXPLICIT:
+            if implicit:
+                implicit = False
+                switched = True
+        elif method == 0 and status < 0:
             if implicit:
                 hnorm = h * _jac_norm(J)
                 easy = easy + 1 if hnorm < NONSTIFF_HNORM else 0
@@ -274,20 +285,20 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
                 nonstiff += 1
                 if nonstiff >= 6:
                     stiff = 0
-            if switched:
-                stats[ST_SWITCH] += 1
-                stiff = 0
-                nonstiff = 0
-                easy = 0
+        if switched:
+            stats[ST_SWITCH] += 1
+            stiff = 0
+            nonstiff = 0
+            easy = 0
         t += h
         copy_into(y, ynew)
         copy_into(f, fnew)
         r_min = min(r_min, math.sqrt(y[0] * y[0] + y[1] * y[1]))
         if record:
-            nodes, n_nodes = _record(nodes, n_nodes, t, y, f)
+            nodes, n_nodes = _record(nodes, n_nodes, y, f)
         fac = maxfac if en == 0.0 else min(maxfac, SAFETY * math.exp(-expo * math.log(en)))
         if last_rejected:
             fac = min(1.0, fac)
         last_rejected = False
         h *= fac
-    return status, t, y, stats, r_min, nodes, n_nodes
+    return status, y[TAU], y, stats, r_min, nodes, n_nodes

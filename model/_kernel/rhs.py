@@ -1,7 +1,7 @@
 """Right-hand side and analytic Jacobian of one support, Eqs. (3)-(6), compiled.
 
-State vector (N_STATE = 11): the motion (x, y, v_x, v_y, theta) followed by six
-quadratures integrated alongside it (MODEL.md, "What one contact yields"):
+State vector (N_STATE = 12): the motion (x, y, v_x, v_y, theta), six quadratures
+integrated alongside it (MODEL.md, "What one contact yields") and the time:
 
     5  W     = int F_f,x dtau             (slab work; the slab moves at speed 1)
     6  I_y   = int F_f,y dtau
@@ -9,6 +9,18 @@ quadratures integrated alongside it (MODEL.md, "What one contact yields"):
     8  D_y   = -int F_f,y v_R,y dtau
     9  int (theta - theta0)^2 dtau        (for Delta theta_rms, Fig. 10f)
     10 int (r - 1)^2 dtau                 (for Delta r_rms)
+    11 tau
+
+Pivot regularisation (Sundman transformation). The independent variable is s with
+dtau/ds = w(r) = (r^2 + DELTA^2) / (r^2 + R_S^2), and every derivative is multiplied by
+w. This is the same ODE, reparametrised: near the pivot the terms k_theta (theta -
+theta0)/r and theta' = (x v_y - y v_x)/r^2, which grow without bound, become bounded,
+so a support driven through the region of its pivot is resolved in s where it would
+need steps below the resolution of tau. Away from the pivot w = 1 to within
+R_S^2/r^2 = 1e-12 (r ~ 1). DELTA > 0 keeps w(0) > 0. A support starting exactly on the
+x-axis moves on it for all time (the torsional terms vanish identically) and meets only
+the cusp of the repulsion at the pivot, which the transformation would merely slow
+down: for it P[REG] = 0 and w = 1.
 
 Parameters travel as one float array ``P`` (see ``pack`` in ``model/_kernel/__init__``).
 """
@@ -17,11 +29,14 @@ import math
 import numpy as np
 from numba import njit
 
-N_STATE = 11
+N_STATE = 12
 N_MOTION = 5
+TAU = 11
+R_S = 1e-6
+DELTA = 1e-14
 # Slots of the parameter array P.
-K_R, K_TH, FN, TH0, MU_S, A_, B_, ZETA, LAM, L0, C0, C2, C4, C6, X0 = range(15)
-N_PARAM = 15
+K_R, K_TH, FN, TH0, MU_S, A_, B_, ZETA, LAM, L0, C0, C2, C4, C6, X0, REG = range(16)
+N_PARAM = 16
 # Below this zeta*s the Taylor series of mu(s)/s is used (no 0/0 at v_R = 0).
 SERIES_BELOW = 1e-3
 
@@ -79,9 +94,18 @@ def _elastic(x, y, dth, P):
     return g / r, -P[K_TH] * dth / r2, r, phi
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def sundman(r2, P):
+    """w = dtau/ds and (dw/dr)/r at r^2 = r2 (see the module docstring)."""
+    if P[REG] == 0.0:
+        return 1.0, 0.0
+    den = r2 + R_S * R_S
+    return (r2 + DELTA * DELTA) / den, 2.0 * (R_S * R_S - DELTA * DELTA) / (den * den)
+
+
 @njit(cache=True, error_model="numpy")
 def rhs(u, P, out):
-    """du/dtau for the 11-component state (Eqs. 5, 6 and the quadratures)."""
+    """du/ds for the 12-component state: w(r) times Eqs. (5), (6), the quadratures, 1."""
     x, y, vx, vy, th = u[0], u[1], u[2], u[3], u[4]
     dth = th - P[TH0]
     q, p, r, _ = _elastic(x, y, dth, P)
@@ -101,13 +125,18 @@ def rhs(u, P, out):
     out[8] = -Fy * vy
     out[9] = dth * dth
     out[10] = (r - 1.0) * (r - 1.0)
+    out[11] = 1.0
+    w, _ = sundman(x * x + y * y, P)
+    for i in range(N_STATE):
+        out[i] *= w
 
 
 @njit(cache=True, error_model="numpy")
-def jacobian(u, P, J):
-    """J[i, j] = d(du_i/dtau)/du_j for all 11 rows and the 5 motion columns.
+def jacobian(u, P, f, J):
+    """J[i, j] = d(du_i/ds)/du_j for all 12 rows and the 5 motion columns.
 
-    The quadratures never feed back, so their columns are zero and omitted.
+    ``f`` is ``rhs(u)``, the w-scaled derivative. The quadratures and tau never feed
+    back, so their columns are zero and omitted.
     """
     x, y, vx, vy, th = u[0], u[1], u[2], u[3], u[4]
     dth = th - P[TH0]
@@ -161,6 +190,14 @@ def jacobian(u, P, J):
     J[8, 2] = -F01 * vy
     J[8, 3] = -(F11 * vy + Fy)
     J[9, 4] = 2.0 * dth
+    # Product rule for w(r) f: J <- w J + f (grad w)^T, grad w = (dw/dr / r) (x, y).
+    w, dw_r = sundman(x * x + y * y, P)
+    for i in range(N_STATE):
+        fi = f[i] / w
+        for j in range(N_MOTION):
+            J[i, j] *= w
+        J[i, 0] += fi * dw_r * x
+        J[i, 1] += fi * dw_r * y
 
 
 @njit(cache=True, error_model="numpy", inline="always")
