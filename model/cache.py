@@ -30,6 +30,7 @@ Guarantees:
 from __future__ import annotations
 
 import dataclasses
+import functools
 import hashlib
 import json
 import logging
@@ -99,9 +100,22 @@ def key_digest(key: dict, version: str) -> str:
     return hashlib.sha256(text.encode()).hexdigest()
 
 
+@functools.lru_cache(maxsize=1)
+def code_digest() -> str:
+    """sha256 of the model package's Python sources: results change when the code does,
+    even between released versions (an edited checkout), so the code is part of every key."""
+    root = Path(__file__).parent
+    h = hashlib.sha256()
+    for path in sorted(root.rglob("*.py")):
+        h.update(path.relative_to(root).as_posix().encode())
+        h.update(path.read_bytes())
+    return h.hexdigest()[:16]
+
+
 def make_key(function: str, **parts) -> dict:
-    """A cache key: the function name, its parameters and settings, the package version."""
-    return {"function": function, "version": package_version(), **parts}
+    """A cache key: the function name, its parameters and settings, the package version
+    and the digest of the model's code."""
+    return {"function": function, "version": package_version(), "code": code_digest(), **parts}
 
 
 def _checksum(arrays: dict, key_json: str, meta_json: str, version: str) -> str:

@@ -237,3 +237,10 @@ def test_clear_and_bad_input(cache):
         cache.put({"f": object()}, _arrays())
     with pytest.raises(ValueError):
         cache.put({"x": float("nan")}, _arrays())
+
+
+def test_changed_model_code_misses(cache, monkeypatch):
+    cache.put(_key(), {"a": np.arange(3.0)})
+    assert cache.get(_key()) is not None
+    monkeypatch.setattr(cache_mod, "code_digest", lambda: "edited-code")
+    assert cache.get(_key()) is None  # results of other code are never returned
