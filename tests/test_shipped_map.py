@@ -8,7 +8,7 @@ import pytest
 
 import model
 from model import Params, uniform_array
-from model.regime_map import (RegimeMap, compute_regime_map, load_regime_map, main,
+from model.shipped_map import (RegimeMap, compute_regime_map, load_regime_map, main,
                               packaged_path, save_regime_map)
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -110,3 +110,10 @@ def test_compute_small_map_matches_shipped_corners(shipped, tmp_path, capsys):
     assert np.all(np.abs(small.FTx_over_mu0FN - shipped.FTx_over_mu0FN[corners]) <= bound)
     with pytest.raises(ValueError):
         compute_regime_map(n=1)
+
+
+def test_regime_map_name_stays_the_sweep_function():
+    import model
+    import model.shipped_map  # noqa: F401  (a submodule import must not shadow the function)
+
+    assert callable(model.regime_map) and model.regime_map.__module__ == "model.sweeps"

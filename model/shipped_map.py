@@ -3,13 +3,13 @@
 A precomputed 24 x 24 map at F_N = 1 ships inside the package
 (``model/data/regime_map_FN1.npz``) so it can be shown instantly::
 
-    >>> from model.regime_map import load_regime_map
+    >>> from model.shipped_map import load_regime_map
     >>> m = load_regime_map()
     >>> m.FTx_over_mu0FN[i, j]     # at k_r = m.k_r[i], k_theta = m.k_theta[j]
 
 Regenerate it (prints progress, the time taken and the largest quadrature error)::
 
-    python -m model.regime_map --n 24 --workers 2 [--out PATH]
+    python -m model.shipped_map --n 24 --workers 2 [--out PATH]
 """
 from __future__ import annotations
 
@@ -165,7 +165,7 @@ def _progress_printer(start):
 
 def main(argv=None) -> int:
     """Command line: regenerate the regime map and report time and largest error."""
-    ap = argparse.ArgumentParser(prog="python -m model.regime_map", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m model.shipped_map", description=__doc__.split("\n")[0])
     ap.add_argument("--n", type=int, default=24, help="grid points per axis (default 24)")
     ap.add_argument("--F-N", dest="F_N", type=float, default=1.0, help="normal load (default 1)")
     ap.add_argument("--tol", type=float, default=1e-3, help="quadrature tolerance (default 1e-3)")

@@ -1,0 +1,109 @@
+"""Shared look of the dashboard's Bokeh figures, and in-place updates of their data.
+
+Every figure function builds a complete figure from plain data; its data sources carry
+``name``s so a view can later replace their ``.data`` in place (no new figure, so zoom and
+axes are kept and nothing flickers) and browser tests can find them in
+``Bokeh.documents[0]``. ``style`` switches a figure between screen and projector mode.
+"""
+from __future__ import annotations
+
+from bokeh.models import ColumnDataSource, GlyphRenderer, Label, Legend, Text, Title
+from bokeh.plotting import figure
+
+#: Okabe-Ito colours: distinguishable with colour-blindness and on a projector.
+BLUE, ORANGE, GREEN, VERMILION = "#0072B2", "#E69F00", "#009E73", "#D55E00"
+PURPLE, SKY, YELLOW, BLACK, GREY = "#CC79A7", "#56B4E9", "#F0E442", "#000000", "#777777"
+REGIME_COLORS = {"pendulum": BLUE, "slider": VERMILION, "stiff": GREEN, "soft": PURPLE}
+
+TOOLS = "pan,wheel_zoom,box_zoom,reset,save"
+LINE = 2.0
+
+
+def new_figure(name: str, title: str, width: int, height: int, **kwargs):
+    """A figure with the dashboard's tools (save included) and styling."""
+    fig = figure(name=name, title=title, width=width, height=height, tools=TOOLS,
+                 toolbar_location="right", **kwargs)
+    fig.toolbar.logo = None
+    fig.toolbar.autohide = True
+    fig.title.text_font_size = "12px"
+    style(fig, False)
+    return fig
+
+
+def source(name: str, data: dict) -> ColumnDataSource:
+    return ColumnDataSource(data=data, name=name)
+
+
+def sources(fig) -> dict:
+    """The named data sources of ``fig``: name -> ColumnDataSource."""
+    return {r.data_source.name: r.data_source for r in fig.renderers
+            if isinstance(r, GlyphRenderer) and r.data_source.name}
+
+
+def annotation(fig, name: str):
+    """The annotation (Label, Span, ...) of ``fig`` called ``name``, or None."""
+    for model in (*fig.center, *fig.above, *fig.below, *fig.left, *fig.right):
+        if getattr(model, "name", None) == name:
+            return model
+    return None
+
+
+def update(named: dict, data: dict) -> None:
+    """Replace the data of named sources: ``named`` from ``sources``, ``data`` name -> dict."""
+    for name, columns in data.items():
+        named[name].data = columns
+
+
+def _base_width(glyph) -> float | None:
+    for tag in glyph.tags:
+        if isinstance(tag, str) and tag.startswith("lw:"):
+            return float(tag[3:])
+    width = getattr(glyph, "line_width", None)
+    if not isinstance(width, (int, float)):
+        return None
+    glyph.tags = [*glyph.tags, f"lw:{width}"]
+    return float(width)
+
+
+def _scale_text(model, scale: float) -> None:
+    """Scale a text size in px, remembering the screen size in ``tags``."""
+    base = next((t for t in model.tags if isinstance(t, str) and t.startswith("fs:")), None)
+    if base is None:
+        size = model.text_font_size
+        size = size.get("value") if isinstance(size, dict) else size
+        if not (isinstance(size, str) and size.endswith("px")):
+            return
+        base = f"fs:{size[:-2]}"
+        model.tags = [*model.tags, base]
+    model.text_font_size = f"{round(float(base[3:]) * scale)}px"
+
+
+def style(fig, projector: bool) -> None:
+    """Screen (False) or projector (True) look: font sizes, line widths, grid contrast."""
+    scale = 1.5 if projector else 1.0
+    label, tick = f"{round(12 * scale)}px", f"{round(11 * scale)}px"
+    title = "15px" if projector else "12px"
+    for axis in (*fig.xaxis, *fig.yaxis):
+        axis.axis_label_text_font_size = label
+        axis.major_label_text_font_size = tick
+        axis.axis_label_text_font_style = "normal"
+        axis.axis_label_text_color = BLACK if projector else "#333333"
+        axis.major_label_text_color = BLACK if projector else "#444444"
+        axis.axis_line_width = 2 if projector else 1
+    if isinstance(fig.title, Title):
+        fig.title.text_font_size = title
+    for grid in (*fig.xgrid, *fig.ygrid):
+        grid.grid_line_color = "#999999" if projector else "#e5e5e5"
+    layouts = (*fig.center, *fig.above, *fig.below, *fig.left, *fig.right)
+    for legend in (m for m in layouts if isinstance(m, Legend)):
+        legend.label_text_font_size = tick
+        legend.background_fill_alpha = 0.9 if projector else 0.7
+    for renderer in (r for r in fig.renderers if isinstance(r, GlyphRenderer)):
+        base = _base_width(renderer.glyph)
+        if base is not None:
+            renderer.glyph.line_width = base * (2.0 if projector else 1.0)
+        if isinstance(renderer.glyph, Text):
+            _scale_text(renderer.glyph, scale)
+    for label in (m for m in layouts if isinstance(m, Label)):
+        _scale_text(label, scale)
+    fig.outline_line_color = BLACK if projector else "#dddddd"

@@ -1,0 +1,161 @@
+"""True polar diagrams of fixed-orientation arrays against theta0 (Fig. 11a-c).
+
+The radius is the quantity, the polar angle is theta0 (0 = the sliding direction +x).
+The sweep covers theta0 in [0, pi]; mirror symmetry (y -> -y) gives the other half:
+F_T,x/(mu0 F_N) and D_y/D_x are even in theta0, F_T,y/(mu0 F_N) is odd. A quantity that
+takes negative values is drawn about an inner ring (radius = value - r_lo), which is
+labelled, so the zero ring stands out. Grid rings and spokes are drawn here, in data
+coordinates (x = r cos theta0, y = r sin theta0).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from bokeh.models import Range1d
+
+from .common import BLACK, BLUE, GREY, VERMILION, new_figure, source
+
+#: key -> (column of the orientation sweep, title, parity in theta0)
+QUANTITIES = {
+    "FTx": ("FTx_over_mu0FN", "F_T,x/(μ₀F_N) vs θ₀ (Fig. 11a)", "even"),
+    "DyDx": ("Dy_over_Dx", "D_y/D_x vs θ₀ (Fig. 11b)", "even"),
+    "FTy": ("FTy_over_mu0FN", "F_T,y/(μ₀F_N) vs θ₀ (Fig. 11c)", "odd"),
+}
+SPOKES_DEG = tuple(range(0, 360, 30))
+
+
+def full_circle(theta0, values, parity: str):
+    """(theta, values) on [0, 2 pi) from a half sweep on [0, pi], closed into a loop."""
+    theta0, values = np.asarray(theta0, float), np.asarray(values, float)
+    sign = 1.0 if parity == "even" else -1.0
+    theta = np.concatenate((theta0, 2 * math.pi - theta0[::-1]))
+    vals = np.concatenate((values, sign * values[::-1]))
+    if theta.size:
+        theta, vals = np.append(theta, theta[0] + 2 * math.pi), np.append(vals, vals[0])
+    return theta, vals
+
+
+def _nice(x: float) -> float:
+    """The smallest of 1, 2, 2.5, 5 times a power of ten that is >= x > 0."""
+    power = 10.0 ** math.floor(math.log10(x))
+    return next(m * power for m in (1, 2, 2.5, 5, 10) if m * power >= x * (1 - 1e-12))
+
+
+def radial_axis(values, parity: str) -> tuple[float, float, list]:
+    """(r_lo, r_hi, ring values): the value at the centre, at the rim, and grid rings."""
+    v = np.asarray(values, float)
+    v = v[np.isfinite(v)]
+    top = float(np.max(np.abs(v))) if v.size else 1.0
+    top = top if top > 0 else 1.0
+    odd = parity == "odd" or bool(v.size and v.min() < 0)
+    best = None
+    lo, hi = (2, 3) if odd else (3, 6)  # rings on each side of the centre
+    for k in range(lo, hi + 1):
+        step = _nice(top / k)
+        n = max(1, math.ceil(top / step - 1e-9))
+        if lo <= n <= hi and (best is None or n * step < best[0] * best[1] - 1e-12):
+            best = (n, step)
+    if best is None:
+        best = (hi, _nice(top / hi))
+    n, step = best
+    if odd:
+        return -n * step, n * step, [k * step for k in range(-n, n + 1)]
+    return 0.0, n * step, [k * step for k in range(1, n + 1)]
+
+
+def grid_data(key: str, axis) -> dict:
+    """Rings (labelled with their values), spokes every 30 degrees and angle labels."""
+    r_lo, r_hi, rings = axis
+    R = r_hi - r_lo
+    phi = np.linspace(0, 2 * math.pi, 121)
+    ring_r = [v - r_lo for v in rings]
+    spokes = np.radians(SPOKES_DEG)
+    label_angle = math.radians(112)
+    return {
+        f"polar_{key}_rings": {"xs": [r * np.cos(phi) for r in ring_r],
+                               "ys": [r * np.sin(phi) for r in ring_r],
+                               "value": list(rings),
+                               "width": [2.0 if v == 0 and r_lo < 0 else 1.0 for v in rings]},
+        f"polar_{key}_spokes": {"xs": [[0.0, R * math.cos(a)] for a in spokes],
+                                "ys": [[0.0, R * math.sin(a)] for a in spokes]},
+        f"polar_{key}_ring_labels": {"x": [r * math.cos(label_angle) for r in ring_r],
+                                     "y": [r * math.sin(label_angle) for r in ring_r],
+                                     "text": [f"{v:g}" for v in rings]},
+        f"polar_{key}_angle_labels": {"x": [1.1 * R * math.cos(a) for a in spokes],
+                                      "y": [1.1 * R * math.sin(a) for a in spokes],
+                                      "text": [f"{d}°" for d in SPOKES_DEG]},
+    }
+
+
+def polar_data(key: str, theta0, values) -> tuple[dict, tuple]:
+    """Sources of one polar diagram from a half sweep, and its radial axis."""
+    parity = QUANTITIES[key][2]
+    theta, vals = full_circle(theta0, values, parity)
+    axis = radial_axis(vals, parity)
+    r = np.clip(vals - axis[0], 0.0, None)
+    curve = {"x": r * np.cos(theta), "y": r * np.sin(theta),
+             "theta0_deg": np.degrees(theta) % 360, "value": vals}
+    return {f"polar_{key}": curve, **grid_data(key, axis)}, axis
+
+
+def polar_now(key: str, theta0: float, value: float, axis) -> dict:
+    """The current theta0 (radians) as a spoke, and its value as a marker."""
+    r_lo, r_hi, _ = axis
+    R = r_hi - r_lo
+    c, s = math.cos(theta0), math.sin(theta0)
+    marker = {"x": [], "y": [], "value": []}
+    if value is not None and math.isfinite(value):
+        r = max(value - r_lo, 0.0)
+        marker = {"x": [r * c], "y": [r * s], "value": [value]}
+    return {f"polar_{key}_now": marker,
+            f"polar_{key}_spoke": {"x": [0.0, R * c], "y": [0.0, R * s]}}
+
+
+def polar_figure(key: str, theta0=(), values=(), current=None, width: int = 310,
+                 height: int = 330):
+    """Fig. 11 (a: ``FTx``, b: ``DyDx``, c: ``FTy``) as a polar diagram.
+
+    ``theta0``, ``values``: the half sweep on [0, pi]; ``current``: (theta0, value) to mark.
+    """
+    data, axis = polar_data(key, theta0, values)
+    if current is not None:
+        data.update(polar_now(key, *current, axis))
+    else:
+        data.update(polar_now(key, math.pi / 2, None, axis))
+    src = {name: source(name, cols) for name, cols in data.items()}
+    E = extent(axis)
+    fig = new_figure(f"polar_{key}", QUANTITIES[key][1], width, height,
+                     x_range=Range1d(-E, E), y_range=Range1d(-E, E),
+                     tooltips=[("θ₀", "@theta0_deg{0.0}°"), ("value", "@value{0.0000}")])
+    fig.axis.visible = False
+    fig.grid.visible = False
+    fig.multi_line("xs", "ys", source=src[f"polar_{key}_rings"], line_color=GREY,
+                           line_alpha=0.6, line_width="width")
+    fig.multi_line("xs", "ys", source=src[f"polar_{key}_spokes"], line_color=GREY,
+                   line_alpha=0.4, line_width=1)
+    fig.text("x", "y", "text", source=src[f"polar_{key}_ring_labels"], text_font_size="10px",
+             text_color="#444444", text_align="center", text_baseline="middle")
+    fig.text("x", "y", "text", source=src[f"polar_{key}_angle_labels"],
+                      text_font_size="10px", text_color="#444444", text_align="center",
+                      text_baseline="middle")
+    fig.line("x", "y", source=src[f"polar_{key}_spoke"], line_color=VERMILION, line_width=1.5,
+             line_dash="dashed")
+    curve = fig.line("x", "y", source=src[f"polar_{key}"], line_color=BLUE, line_width=2.5)
+    fig.scatter("x", "y", source=src[f"polar_{key}_now"], size=11, fill_color=VERMILION,
+                line_color=BLACK)
+    fig.hover.renderers = [curve]
+    fig.frame_width = fig.frame_height = min(width, height) - 50  # equal scales on x and y
+    return fig
+
+
+def extent(axis) -> float:
+    """Half the side of the square shown: the rim with room for the angle labels."""
+    return 1.22 * (axis[1] - axis[0])
+
+
+def set_extent(fig, axis) -> None:
+    """Fit the ranges of a polar figure to a new radial axis."""
+    E = extent(axis)
+    fig.x_range.update(start=-E, end=E)
+    fig.y_range.update(start=-E, end=E)

@@ -1,0 +1,11 @@
+"""The dashboard's views (``pn.viewable.Viewer`` subclasses), each reading one
+``ExplorerState`` and drawing with the figure functions of ``app.figures``."""
+from .arrays import LoadView, RegimeMapView
+from .controls import Controls
+from .page import Dashboard
+from .polar import PolarView
+from .readouts import ReadoutsView
+from .support import SupportView
+
+__all__ = ["Dashboard", "Controls", "SupportView", "ReadoutsView", "PolarView",
+           "RegimeMapView", "LoadView"]
