@@ -64,9 +64,8 @@ def server_side(n: int) -> dict:
 
 
 def browser_side(presses: int, out: Path) -> dict:
-    sys.path.insert(0, str(ROOT / "tests" / "browser"))
-    from page_tools import (launch_chromium, measure_slider_latency, serve_app, settle,
-                            slider_handle, wait_for_app)
+    from tests.browser.page_tools import measure_slider_latency, settle, slider_handle, wait_for_app
+    from tests.browser.serving import launch_chromium, serve_app
     from playwright.sync_api import sync_playwright
 
     with serve_app(out / "bench-panel-serve.log") as base, sync_playwright() as pw:

@@ -20,7 +20,8 @@ from pathlib import Path
 
 import pytest
 
-from .page_tools import CHROMIUM, ROOT, VIEWPORT, ServerError, launch_chromium, screenshot, serve_app
+from .page_tools import screenshot
+from .serving import CHROMIUM, ROOT, VIEWPORT, ServerError, launch_chromium, serve_app
 
 ARTIFACTS = ROOT / "artifacts"
 APP_DIR = os.environ.get("MICROPILLAR_BROWSER_APP", "app")  # another app, to try the harness

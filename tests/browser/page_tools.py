@@ -10,107 +10,13 @@ has changed.
 """
 from __future__ import annotations
 
-import contextlib
 import math
-import os
 import re
-import shutil
-import socket
 import statistics
-import subprocess
-import sys
 import time
-import urllib.error
-import urllib.request
 from dataclasses import dataclass, field
 from pathlib import Path
 
-CHROMIUM = "/usr/bin/chromium"
-# Debian's Chromium on a machine with a closed network, run as root, without a GPU.
-CHROMIUM_FLAGS = [
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--no-first-run",
-    "--disable-sync",
-    "--disable-dev-shm-usage",
-]
-VIEWPORT = {"width": 1280, "height": 720}
-ROOT = Path(__file__).resolve().parents[2]
-
-
-class ServerError(RuntimeError):
-    """``panel serve`` did not come up healthy."""
-
-
-def _free_port() -> int:
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as sock:
-        sock.bind(("127.0.0.1", 0))
-        return sock.getsockname()[1]
-
-
-def _status(url: str) -> int | None:
-    try:
-        with urllib.request.urlopen(url, timeout=10) as response:
-            return response.status
-    except urllib.error.HTTPError as error:
-        return error.code
-    except (urllib.error.URLError, OSError):
-        return None
-
-
-@contextlib.contextmanager
-def serve_app(log_path: Path, app_dir: str = "app", timeout_s: float = 60.0, warmup: bool = True):
-    """Run ``panel serve <app_dir>`` from the repository root on a free loopback port.
-
-    Compiles the model's kernel first (``python -m model warmup``), waits until
-    ``/liveness?endpoint=/<app>`` answers 200 (a real session of the app was built), yields
-    the base URL (``http://127.0.0.1:<port>``) and stops the server on exit. The server's
-    output goes to ``log_path``. Raises ``ServerError`` (with the log's tail) otherwise.
-    """
-    if warmup:
-        subprocess.run([sys.executable, "-m", "model", "warmup"], cwd=ROOT, check=True,
-                       timeout=600, stdout=subprocess.DEVNULL)
-    port = _free_port()
-    base = f"http://127.0.0.1:{port}"
-    panel = shutil.which("panel", path=os.path.dirname(sys.executable))
-    command = ([panel] if panel else [sys.executable, "-m", "panel"]) + [
-        "serve", app_dir, "--port", str(port), "--address", "127.0.0.1",
-        f"--allow-websocket-origin=127.0.0.1:{port}", "--liveness"]
-    log = open(log_path, "w", encoding="utf-8")
-    env = dict(os.environ, PYTHONUNBUFFERED="1")
-    process = subprocess.Popen(command, cwd=ROOT, stdout=log, stderr=subprocess.STDOUT, env=env)
-    try:
-        deadline = time.monotonic() + timeout_s
-        status = None
-        while time.monotonic() < deadline and process.poll() is None:
-            status = _status(f"{base}/liveness?endpoint=/{Path(app_dir).name}")
-            if status in (200, 500):  # 500: the app raised while building its page
-                break
-            time.sleep(0.5)
-        if status != 200:
-            log.flush()
-            tail = Path(log_path).read_text(encoding="utf-8", errors="replace")[-3000:]
-            raise ServerError(f"`{' '.join(command)}` was not healthy within {timeout_s:.0f} s "
-                              f"(exit code {process.poll()}, last /liveness status {status}); "
-                              f"its log:\n{tail}")
-        yield base
-    finally:
-        process.terminate()
-        try:
-            process.wait(timeout=15)
-        except subprocess.TimeoutExpired:
-            process.kill()
-            process.wait(timeout=15)
-        log.close()
-
-
-def launch_chromium(playwright):
-    """Debian's Chromium, headless, launched by Playwright (``sync_playwright()``)."""
-    return playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_FLAGS,
-                                      headless=True)
 
 # A JavaScript function (as source) that fingerprints every ColumnDataSource in the page:
 # {id: {name, type, columns: {column: "length:sum:weighted sum"}}}.  It is cheap enough to
