@@ -15,12 +15,14 @@ import json
 import math
 import platform
 import statistics
+import subprocess
+import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-from model import REGIMES, fixed_orientation, orientation_sweep, uniform_array
+from model import REGIMES, SolverOptions, fixed_orientation, orientation_sweep, uniform_array
 from model._kernel import warmup
 from model.support import _simulate
 from model.uniform import _uniform
@@ -69,6 +71,63 @@ def run(quick: bool):
     return rows
 
 
+def tolerance_costs(quick: bool) -> list:
+    """Uniform-array cost against the quadrature tolerance (members, time, error estimate)
+    and against the members' integration tolerance; the self-consistent beta's extra cost."""
+    rows = []
+    tols = (1e-2, 1e-3) if quick else (1e-2, 3e-3, 1e-3, 3e-4, 1e-4)
+    for name in ("pendulum", "slider"):
+        p = REGIMES[name]
+        for tol in tols:
+            for beta in (1.0, "self"):
+                med, _, _, u = timed(lambda: uniform_array(p, tol=tol, beta=beta), 1 if quick else 3)
+                rows.append(dict(regime=name, tol=tol, rtol=u.stats["rtol"], beta=str(beta),
+                                 ms=med * 1e3, members=u.n_members,
+                                 trajectories=u.stats["trajectories"],
+                                 quad_error=u.quadrature_error["FTx_over_mu0FN"],
+                                 integration_error=u.integration_error))
+        for rtol in ((1e-4, 1e-6) if quick else (1e-4, 1e-5, 1e-6, 1e-7)):
+            med, _, _, u = timed(lambda: uniform_array(p, tol=1e-3, rtol=rtol, beta=1.0),
+                                 1 if quick else 3)
+            rows.append(dict(regime=name, tol=1e-3, rtol=rtol, beta="1.0", ms=med * 1e3,
+                             members=u.n_members, trajectories=u.stats["trajectories"],
+                             quad_error=u.quadrature_error["FTx_over_mu0FN"],
+                             integration_error=u.integration_error))
+    return rows
+
+
+def throughput() -> dict:
+    """Orientation-sweep trajectories per second against single calls (Python loop)."""
+    p = REGIMES["pendulum"]
+    theta = np.linspace(0, math.pi, 202)[1:-1]
+    med, _, _, _ = timed(lambda: orientation_sweep(p, theta, beta=1.0), 3)
+    _clear()
+    start = time.perf_counter()
+    for t in theta:
+        _simulate.__wrapped__(p.replace(theta0=float(t)), SolverOptions(), 0)
+    single = time.perf_counter() - start
+    return {"batch_per_s": theta.size / med, "single_per_s": theta.size / single}
+
+
+def peak_rss_mb(code: str) -> float:
+    """Peak resident memory (MB) of a fresh interpreter running ``code``."""
+    script = code + "\nimport resource; print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)"
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         check=True, timeout=900)
+    return int(out.stdout.split()[-1]) / 1024
+
+
+def memory(quick: bool) -> dict:
+    n = 4 if quick else 12
+    return {
+        "uniform array (slider, self-consistent beta)": peak_rss_mb(
+            "from model import REGIMES, uniform_array; uniform_array(REGIMES['slider'])"),
+        f"regime map {n}x{n} (1 process)": peak_rss_mb(
+            f"from model.sweeps import regime_map; regime_map(n={n})"),
+        "import only (baseline)": peak_rss_mb("import model"),
+    }
+
+
 def report(rows) -> str:
     head = (f"# Array benchmarks\n\nmachine: {platform.processor() or platform.machine()}, "
             f"python {platform.python_version()}; medians over repeats, cold caches.\n\n"
@@ -80,6 +139,21 @@ def report(rows) -> str:
     return head + "\n".join(lines) + "\n"
 
 
+def extra_report(costs, rates, mem) -> str:
+    lines = ["", "## Uniform array cost against tolerance", "",
+             "| regime | quadrature tol | member rtol | beta | ms | members | trajectories | "
+             "quadrature error | integration error |", "|---|---|---|---|---:|---:|---:|---|---|"]
+    lines += [f"| {c['regime']} | {c['tol']:g} | {c['rtol']:g} | {c['beta']} | {c['ms']:.1f} | "
+              f"{c['members']} | {c['trajectories']} | {c['quad_error']:.1e} | "
+              f"{c['integration_error']:.1e} |" for c in costs]
+    lines += ["", f"Orientation sweep throughput (pendulum, 200 orientations): "
+              f"{rates['batch_per_s']:.0f} trajectories/s in one batch vs "
+              f"{rates['single_per_s']:.0f}/s through single calls.", "",
+              "## Peak memory (fresh process)", "", "| computation | peak RSS MB |", "|---|---:|"]
+    lines += [f"| {k} | {v:.0f} |" for k, v in mem.items()]
+    return "\n".join(lines) + "\n"
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="fewer repeats (for CI)")
@@ -87,11 +161,16 @@ def main():
     args = ap.parse_args()
     print(f"kernel ready in {warmup():.2f} s")
     rows = run(args.quick)
-    text = report(rows)
+    costs = tolerance_costs(args.quick)
+    rates = throughput()
+    mem = memory(args.quick)
+    text = report(rows) + extra_report(costs, rates, mem)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     (out / "arrays.md").write_text(text)
-    (out / "arrays.json").write_text(json.dumps(rows, indent=1, default=float))
+    (out / "arrays.json").write_text(json.dumps(
+        {"timings": rows, "tolerance_costs": costs, "throughput": rates, "peak_rss_mb": mem},
+        indent=1, default=float))
     print(text)
 
 
