@@ -51,6 +51,8 @@ def cases(mode: str) -> dict:
            "hard F_N=10": (Params(k_r=0.01, k_theta=0.01, F_N=10, theta0=math.pi / 2), 1e-5)}
     if mode == "full":
         out.update({f"{n} pi/2": (REGIMES[n], 1e-6) for n in ("slider", "stiff", "soft")})
+        # MODEL.md hard case: driven into the pivot region (theta0 near pi, slider springs).
+        out["slider pi-1e-3"] = (REGIMES["slider"].replace(theta0=math.pi - 1e-3), 1e-5)
     return out
 
 
