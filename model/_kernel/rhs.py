@@ -26,7 +26,6 @@ Parameters travel as one float array ``P`` (see ``pack`` in ``model/_kernel/__in
 """
 import math
 
-import numpy as np
 from numba import njit
 
 N_STATE = 12
@@ -204,7 +203,3 @@ def jacobian(u, P, f, J):
 def exit_gap(t, x, P):
     """Slid distance minus L0, s(tau) - L0 with s = tau - (x - x0) (Eq. 9); >= 0 ends contact."""
     return t - (x - P[X0]) - P[L0]
-
-
-def empty_jacobian():
-    return np.zeros((N_STATE, N_MOTION))
