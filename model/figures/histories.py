@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 from bokeh.models import FactorRange, Label, Range1d, Span
 
-from model import mu, mu0
+from ..friction import mu, mu0
 
 from .common import BLACK, BLUE, GREEN, GREY, PURPLE, VERMILION, new_figure, source
 
