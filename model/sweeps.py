@@ -180,7 +180,8 @@ def orientation_table(params, theta0=None, n: int = 37, beta="self", rtol: float
 
     ``params`` is a ``Params`` or a regime name; theta0 defaults to the midpoints of
     ``n`` equal cells of [0, pi]. Columns: theta0, F_T,x and F_T,y over mu0 F_N, D_y/D_x, N_c/N_c0,
-    dtheta_rms, dr_rms, beta, pivot_approach, success.
+    dtheta_rms, dr_rms, beta, pivot_approach, the relative energy residual
+    |W - (D_x + D_y + U_el + K)|/W (the integration error), success.
     """
     start = time.perf_counter()
     if isinstance(params, str):
@@ -196,6 +197,7 @@ def orientation_table(params, theta0=None, n: int = 37, beta="self", rtol: float
                "FTy_over_mu0FN": s.FTy_over_mu0FN, "Dy_over_Dx": s.Dy_over_Dx,
                "Nc_over_Nc0": s.Nc_over_Nc0, "dtheta_rms": s.dtheta_rms, "dr_rms": s.dr_rms,
                "beta": s.beta, "pivot_approach": s.contacts.pivot_approach,
+               "relative_residual": np.abs(s.contacts.energy_residual) / np.abs(s.contacts.W),
                "success": s.success}
     if progress is not None:
         progress(theta0.size, theta0.size)

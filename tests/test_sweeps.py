@@ -100,7 +100,7 @@ def test_orientation_table_matches_orientation_sweep():
     assert r.kind == "orientation" and len(r) == 5
     assert list(r.columns) == ["theta0", "FTx_over_mu0FN", "FTy_over_mu0FN", "Dy_over_Dx",
                                "Nc_over_Nc0", "dtheta_rms", "dr_rms", "beta", "pivot_approach",
-                               "success"]
+                               "relative_residual", "success"]
     midpoints = (np.arange(5) + 0.5) * math.pi / 5  # off the exact axis orientations
     np.testing.assert_array_equal(r.columns["theta0"], midpoints)
     direct = orientation_sweep(REGIMES["slider"], midpoints)

@@ -10,6 +10,9 @@ array
     contact count and work split, with both averages of the uniform array.
 sweep
     A parameter sweep behind one of the paper's figures, written to a CSV file.
+reproduce
+    Every figure of the paper regenerated (HTML, PNG, CSV) and its findings checked in a
+    report (``report.md``, ``index.html``).
 warmup
     Compile the kernel into numba's on-disk cache (run once after installing).
 
@@ -27,7 +30,7 @@ from ..friction import mu0
 from ..options import METHODS, SolverOptions
 from ..params import Params
 from ..support import simulate_support
-from . import array, sweep
+from . import array, reproduce, sweep
 from ._common import (FIELD_FLAGS, PROG, CommandParser, UsageError, add_stiffness,
                       as_usage_error, jsonable, real, stiffness, table, whole)
 
@@ -176,6 +179,7 @@ def build_parser() -> CommandParser:
     _add_support(commands)
     array.add_command(commands)
     sweep.add_command(commands)
+    reproduce.add_command(commands)
     _add_warmup(commands)
     return parser
 

@@ -1,0 +1,138 @@
+"""Reproduce the paper: every figure regenerated, every finding checked.
+
+``reproduce(out)`` (or ``python -m model reproduce --out DIR``) computes the data behind
+Figs. 3, 5a/b, 6, 7a/b, 8a/b, 10a-f and 11a-c, draws each with the dashboard's figure
+functions (``model.figures``), and writes into ``out``:
+
+* ``figN.html`` -- a standalone interactive figure (BokehJS inlined, opens offline);
+* ``figN.png`` -- its picture, when Playwright and Chromium are available;
+* ``figN.csv`` -- its data, with the parameters and solver settings in a ``# key: value``
+  header (``model.sweeps.read_csv`` reads it back);
+* ``report.md`` and ``index.html`` -- the findings of the paper (MODEL.md 1-7) against
+  the computed numbers with their error estimates, where the model differs, and how
+  the headline numbers move with the choices the paper left open.
+
+Uniform-array points go through the on-disk cache, so a second run is quick.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..sweeps import SweepResult
+from . import findings, render, report, sensitivity
+from .datasets import RESOLUTIONS, Data, Resolution, compute, stages
+from .figures import FIGURES, FigureSpec
+
+__all__ = ["reproduce", "Reproduction", "FigureFiles", "RESOLUTIONS", "Resolution",
+           "FIGURES", "STAGES"]
+
+#: Stages after the computations, for progress reports.
+STAGES = ("sensitivity", "figures and CSV", "PNG pictures")
+
+
+@dataclass(frozen=True)
+class FigureFiles:
+    spec: FigureSpec
+    html: Path
+    csv: Path
+    png: Path | None
+
+
+@dataclass
+class Reproduction:
+    """What ``reproduce`` wrote, with the checks and sensitivity variants it computed."""
+
+    out: Path
+    resolution: Resolution
+    data: Data
+    checks: list
+    variants: list
+    figures: list
+    report: Path
+    index: Path
+    png_note: str
+    version: str
+    seconds: float
+    extra_seconds: dict = field(default_factory=dict)
+
+    @property
+    def n_differ(self) -> int:
+        return sum(not c.agrees for c in self.checks)
+
+
+def _resolution(resolution) -> Resolution:
+    if isinstance(resolution, Resolution):
+        return resolution
+    if resolution not in RESOLUTIONS:
+        raise ValueError(f"resolution={resolution!r} must be one of {sorted(RESOLUTIONS)}")
+    return RESOLUTIONS[resolution]
+
+
+def _write_figures(data: Data, out: Path, tick) -> list:
+    from .. import __version__
+
+    files = []
+    for i, spec in enumerate(FIGURES):
+        html = render.save_html(spec.draw(data), out / f"{spec.key}.html",
+                                f"Fig. {spec.number}: {spec.caption}")
+        columns, settings = spec.table(data)
+        header = {"figure": spec.number, "caption": spec.caption,
+                  "resolution": data.resolution.name, **settings}
+        csv = out / f"{spec.key}.csv"
+        SweepResult(spec.key, {k: list(v) for k, v in columns.items()}, header, 0.0).to_csv(csv)
+        files.append(FigureFiles(spec, html, csv, None))
+        tick(i + 1, len(FIGURES))
+    return files
+
+
+def reproduce(out, resolution="full", workers: int = 1, png="auto",
+              progress=None) -> Reproduction:
+    """Regenerate every figure of the paper into the folder ``out`` and check its findings.
+
+    ``resolution``: ``"full"`` (the figures as published; a few minutes) or ``"coarse"``
+    (a quick check of the pipeline), or a ``Resolution``. ``workers``: processes for the
+    uniform-array sweeps. ``png``: ``"auto"`` (when a browser is available), ``True``
+    (fail without one) or ``False``. ``progress(stage, done, total)`` reports progress.
+    """
+    from .. import __version__
+
+    start = time.perf_counter()
+    res = _resolution(resolution)
+    if png not in ("auto", True, False):
+        raise ValueError(f"png={png!r} must be 'auto', True or False")
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    report_ = progress or (lambda stage, done, total: None)
+    data = compute(res, workers=workers, progress=report_)
+    extra = {}
+
+    def stage(name, fn):
+        t0 = time.perf_counter()
+        value = fn(lambda done, total: report_(name, done, total))
+        extra[name] = time.perf_counter() - t0
+        return value
+
+    variants = stage(STAGES[0], lambda t: sensitivity.variants(data.headline, res.tol,
+                                                               res.mc_draws, t))
+    figures = stage(STAGES[1], lambda t: _write_figures(data, out, t))
+    problem = render.browser_problem() if png else "not requested"
+    if png is True and problem:
+        raise RuntimeError(f"PNG pictures were requested but cannot be made: {problem}")
+    if not problem:
+        pages = [(f.html, out / f"{f.spec.key}.png") for f in figures]
+        stage(STAGES[2], lambda t: render.html_to_png(pages, t))
+        figures = [FigureFiles(f.spec, f.html, f.csv, png_) for f, (_, png_) in
+                   zip(figures, pages)]
+    rep = Reproduction(out, res, data, findings.all_checks(data), variants, figures,
+                       out / "report.md", out / "index.html", problem or "", __version__,
+                       0.0, extra)
+    rep.seconds = time.perf_counter() - start
+    report.write(rep, out)
+    return rep
+
+
+def all_stages(resolution="full") -> list:
+    """Names of every stage ``reproduce`` reports progress on, in order."""
+    return [name for name, _ in stages(_resolution(resolution))] + list(STAGES)
