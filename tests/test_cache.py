@@ -244,3 +244,13 @@ def test_changed_model_code_misses(cache, monkeypatch):
     assert cache.get(_key()) is not None
     monkeypatch.setattr(cache_mod, "code_digest", lambda: "edited-code")
     assert cache.get(_key()) is None  # results of other code are never returned
+
+
+def test_code_digest_covers_computing_code_but_not_drawing_code():
+    from pathlib import Path
+
+    root = Path(cache_mod.__file__).parent
+    covered = {p.relative_to(root).parts[0] for p in root.rglob("*.py")} - set(
+        cache_mod.PRESENTATION)
+    assert {"uniform.py", "fixed.py", "_kernel", "params.py"} <= covered
+    assert {"figures", "reproduce", "cli"} <= {p.name for p in root.iterdir()}
