@@ -48,12 +48,12 @@ RUN python -m model warmup \
 
 EXPOSE 5006
 
-# /liveness?endpoint=/app builds a page of the app in the server: a server that is down,
-# stuck, or hangs while building the page fails the check (urlopen raises, exit code 1).
-# Panel turns an exception of the app into an error page, which still answers 200.
+# app/healthcheck.py: Panel's /liveness?endpoint=/app must answer (the server is up and
+# not stuck), then a real session of /app must receive the dashboard. The second step makes
+# an app that raises unhealthy: Panel shows it as an error page, and its liveness says 200.
 # The first check after a start also starts worker processes, hence the long timeout.
 HEALTHCHECK --interval=30s --timeout=30s --start-period=120s --retries=3 \
-    CMD ["python", "-c", "import urllib.request; urllib.request.urlopen('http://127.0.0.1:5006/liveness?endpoint=/app', timeout=25)"]
+    CMD ["python", "-m", "app.healthcheck", "http://127.0.0.1:5006/", "--timeout", "25"]
 
 # One server process: the model already runs in three worker processes per server
 # (app/jobs.py), and a second server process would double them (about 230 MB each).

@@ -156,15 +156,12 @@ def test_cmd_healthcheck_and_expose_agree():
     for flag in ("--liveness", "--check-unused-sessions", "--unused-session-lifetime"):
         assert any(a == flag or a.startswith(flag + "=") for a in cmd), flag
     check = parse_healthcheck(_only(instructions, "HEALTHCHECK"))
-    urls = re.findall(r"https?://[^'\"\s]+", " ".join(check.argv))
-    assert len(urls) == 1, urls
-    url = urllib.parse.urlsplit(urls[0])
-    assert (url.hostname, url.port, url.path) == ("127.0.0.1", IMAGE_PORT, "/liveness")
-    assert urllib.parse.parse_qs(url.query) == {"endpoint": [f"/{Path(app).name}"]}
-    assert check.argv[0] == "python"
+    assert check.argv[:3] == ["python", "-m", f"{Path(app).name}.healthcheck"]
+    assert (ROOT / app / "healthcheck.py").is_file()
+    url = urllib.parse.urlsplit(check.argv[3])
+    assert (url.hostname, url.port, url.path) == ("127.0.0.1", IMAGE_PORT, "/")
     # A docker check must finish within its own timeout, or docker kills it.
-    inner = re.search(r"timeout=(\d+(?:\.\d+)?)", check.argv[-1])
-    assert inner and float(inner[1]) < check.options["timeout"]
+    assert float(option_value(check.argv, "--timeout")) < check.options["timeout"]
     env = image_env(instructions)
     assert env.get("BOKEH_RESOURCES") == "server"  # BokehJS and Panel's files, never a CDN
     origins = env.get("BOKEH_ALLOW_WS_ORIGIN", "").split(",")
@@ -253,9 +250,12 @@ def _healthcheck_argv(replay: Replay, port: int) -> list[str]:
     return [a.replace(old, f"127.0.0.1:{port}/") for a in argv]
 
 
-def _run_check(argv, env, timeout) -> int:
+def _run_check(argv, env, timeout, cwd) -> int:
+    """The health command's exit code, run in the image's working directory (-1: killed at
+    docker's timeout)."""
     try:
-        return subprocess.run(argv, env=env, capture_output=True, timeout=timeout).returncode
+        return subprocess.run(argv, env=env, capture_output=True, timeout=timeout,
+                              cwd=cwd).returncode
     except subprocess.TimeoutExpired:
         return -1
 
@@ -315,7 +315,8 @@ def test_image_command_serves_a_healthy_cdn_free_app(image, tmp_path):
         deadline = started + image.healthcheck.options.get("start-period", 60) + 60
         healthy = False
         while time.perf_counter() < deadline and process.poll() is None:
-            if _run_check(check, image.process_env(port), image.healthcheck.options["timeout"]) == 0:
+            if _run_check(check, image.process_env(port), image.healthcheck.options["timeout"],
+                          image.workdir) == 0:
                 healthy = True
                 break
             time.sleep(1.0)
@@ -385,12 +386,13 @@ def _replay_without_build(root: Path) -> Replay:
 @pytest.mark.slow
 def test_healthcheck_fails_for_a_stuck_app_and_a_dead_server(tmp_path):
     """Unhealthy (exit code 1, as docker expects) when building a page hangs, and when no
-    server answers. (An app that raises is not caught: Panel serves it as an error page.)"""
+    server answers."""
     replay = _replay_without_build(tmp_path)
     timeout = replay.healthcheck.options["timeout"]
     app = tmp_path / replay.cmd[2]
     app.mkdir()
     (app / "main.py").write_text(f"import time\ntime.sleep({timeout + 30})\n")
+    shutil.copy(ROOT / replay.cmd[2] / "healthcheck.py", app)  # as in the image's app folder
     log_path = tmp_path / "stuck.log"
     process, port, _ = _serve(replay, log_path)
     check = _healthcheck_argv(replay, port)
@@ -400,13 +402,40 @@ def test_healthcheck_fails_for_a_stuck_app_and_a_dead_server(tmp_path):
             assert process.poll() is None and time.monotonic() < deadline, _log_tail(log_path)
             time.sleep(0.3)
         started = time.monotonic()
-        assert _run_check(check, replay.process_env(port), timeout) == 1
+        assert _run_check(check, replay.process_env(port), timeout, replay.workdir) == 1
         assert time.monotonic() - started < timeout  # the check's own timeout fired
     finally:
         process.kill()  # its event loop sleeps: SIGTERM would wait for the sleep
         process.wait(timeout=15)
         process.log.close()
-    assert _run_check(check, replay.process_env(port), timeout) == 1
+    assert _run_check(check, replay.process_env(port), timeout, replay.workdir) == 1
+
+
+@pytest.mark.slow
+def test_healthcheck_fails_for_an_app_that_raises(tmp_path):
+    """The real app with a failing line before the page is built: Panel's liveness still
+    answers 200, the health command does not."""
+    replay = _replay_without_build(tmp_path)
+    app = tmp_path / replay.cmd[2]
+    shutil.copytree(ROOT / replay.cmd[2], app, ignore=shutil.ignore_patterns("__pycache__"))
+    main = app / "main.py"  # fails before it builds the page, as a broken deployment does
+    broken = "\nraise RuntimeError('a broken deployment')\nimport panel as pn\n"
+    main.write_text(main.read_text(encoding="utf-8").replace("\nimport panel as pn\n", broken, 1))
+    log_path = tmp_path / "raising.log"
+    process, port, _ = _serve(replay, log_path)
+    try:
+        deadline = time.monotonic() + 90
+        while _status(f"http://127.0.0.1:{port}/liveness?endpoint=/app") != 200:
+            assert process.poll() is None and time.monotonic() < deadline, _log_tail(log_path)
+            time.sleep(0.5)
+        check = _healthcheck_argv(replay, port)
+        assert _run_check(check, replay.process_env(port), replay.healthcheck.options["timeout"],
+                          replay.workdir) == 1
+        assert "a broken deployment" in log_path.read_text(encoding="utf-8")
+    finally:
+        process.terminate()
+        process.wait(timeout=30)
+        process.log.close()
 
 
 def _readme_docker_section() -> str:
@@ -433,6 +462,6 @@ def test_readme_describes_this_dockerfile():
     image = argv.index("micropillar-friction")
     prefix = option_value(argv[image + 1:], "--prefix")
     assert prefix and argv[image + 1:] == cmd + ["--prefix", prefix, "--use-xheaders"]
-    moved = [a.replace("/liveness?", f"{prefix}/liveness?") for a in check[1:]]
+    moved = [a.replace(f":{IMAGE_PORT}/", f":{IMAGE_PORT}{prefix}/") for a in check[1:]]
     assert shlex.split(option_value(argv, "--health-cmd"))[1:] == moved
     assert f"location {prefix}/" in section
