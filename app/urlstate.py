@@ -25,6 +25,7 @@ URL keys (values in the units of the controls):
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Mapping
 from urllib.parse import parse_qs, urlencode
 
@@ -102,6 +103,8 @@ def serialize(values: Mapping) -> dict[str, str]:
     """
     out = {"k_r": _fmt(values["k_r"]), "k_theta": _fmt(values["k_theta"]),
            "F_N": _fmt(values["F_N"]), "theta0_deg": _fmt(values["theta0"])}
+    if float(out["theta0_deg"]) >= 360.0:  # 359.9999996 rounds to 360, which is 0 degrees
+        out["theta0_deg"] = "0"
     if values["rtol"] != DEFAULTS["rtol"]:
         out["rtol"] = f"{values['rtol']:g}"
     if values["beta_mode"] == "fixed":
@@ -159,7 +162,7 @@ def parse(query: Mapping | str) -> tuple[dict, list[str]]:
                 notices.append(_notice("beta", text, "'self' or a number in (0, 1]"))
             continue
         if key not in _READERS:
-            notices.append(f"Unknown URL parameter '{key}' ignored.")
+            notices.append(f"Unknown URL parameter {_shown(key)} ignored.")
             continue
         name, read, expected = _READERS[key]
         value = read(text)
@@ -170,7 +173,19 @@ def parse(query: Mapping | str) -> tuple[dict, list[str]]:
     return values, notices
 
 
+#: Characters of Markdown/HTML markup and of links ("." and ":" stop the page from
+#: turning a domain into a link); escaped where URL text is echoed in a notice.
+_MARKUP = re.compile(r"([\\`*_{}\[\]()#!|<>&~\".:])")
+
+
+def _shown(text: str) -> str:
+    """``text`` from the URL as it is echoed in a notice: quoted, at most 40 characters,
+    and with its markup characters backslash-escaped, so the page (which renders notices
+    as Markdown) shows it literally instead of as HTML, links or formatting."""
+    shown = repr(text if len(text) <= 40 else text[:37] + "...")
+    return _MARKUP.sub(r"\\\1", shown)
+
+
 def _notice(key: str, text: str, expected: str) -> str:
-    shown = text if len(text) <= 40 else text[:37] + "..."
-    return (f"URL parameter {key}={shown!r} is not usable ({expected} expected); "
+    return (f"URL parameter {key}={_shown(text)} is not usable ({expected} expected); "
             "the default is used.")

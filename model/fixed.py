@@ -61,11 +61,19 @@ def orientation_sweep(params: Params, theta0, beta="self", rtol: float = 1e-6,
     bracketed root finder; a number uses that fixed load factor (1 = no correction).
     """
     start = time.perf_counter()
-    theta0 = np.atleast_1d(np.asarray(theta0, dtype=float))
-    if theta0.size == 0 or not np.all(np.isfinite(theta0)):
-        raise ValueError(f"theta0={theta0!r} must be a non-empty array of finite angles")
+    if not isinstance(params, Params):
+        raise TypeError(f"params must be a model.Params, not {type(params).__name__}")
+    try:
+        theta0 = shown = np.atleast_1d(np.asarray(theta0, dtype=float))
+    except (TypeError, ValueError, OverflowError):
+        theta0, shown = np.array([]), theta0
+    if theta0.ndim != 1 or theta0.size == 0 or not np.all(np.isfinite(theta0)):
+        raise ValueError(f"theta0={shown!r} must be a non-empty 1-D array of finite angles")
     for t in (theta0.min(), theta0.max()):
         params.replace(theta0=t)  # range check with the message of Params
+    if isinstance(beta_xtol, bool) or not (isinstance(beta_xtol, (int, float))
+                                           and 1e-15 <= beta_xtol <= 0.1):
+        raise ValueError(f"beta_xtol={beta_xtol!r} must be a number in [1e-15, 0.1]")
     options = SolverOptions(rtol=rtol, atol=atol, method=method)
     if isinstance(beta, str):
         if beta != "self":
@@ -137,6 +145,8 @@ class FixedArrayResult:
 def fixed_orientation(params: Params, beta="self", rtol: float = 1e-6,
                       atol: float | None = None, method: str = "auto") -> FixedArrayResult:
     """A fixed-orientation array at ``params.theta0`` (Figs. 9-11); see ``orientation_sweep``."""
+    if not isinstance(params, Params):
+        raise TypeError(f"params must be a model.Params, not {type(params).__name__}")
     s = orientation_sweep(params, [params.theta0], beta=beta, rtol=rtol, atol=atol, method=method)
     c = s.contacts
     status = int(c.status[0])

@@ -35,9 +35,10 @@ class SolverOptions:
         atol = rtol / 100 if self.atol is None else _finite("atol", self.atol, 1e-16, 1e-2)
         if self.method not in METHODS:
             raise ValueError(f"method={self.method!r} is unknown; choose one of {', '.join(METHODS)}")
-        if isinstance(self.max_steps, bool) or not float(self.max_steps).is_integer():
+        max_steps = _finite("max_steps", self.max_steps, 10, 1e8)
+        if not max_steps.is_integer():
             raise ValueError(f"max_steps={self.max_steps!r} must be a whole number in [10, 1e8]")
-        max_steps = int(_finite("max_steps", self.max_steps, 10, 1e8))
+        max_steps = int(max_steps)
         tau_max = _finite("tau_max", self.tau_max, 1.0, 1e8)
         object.__setattr__(self, "rtol", rtol)
         object.__setattr__(self, "atol", atol)
@@ -47,9 +48,13 @@ class SolverOptions:
 
 def _finite(name, value, lo, hi) -> float:
     try:
+        if isinstance(value, (bool, str, bytes)):  # float() would accept these
+            raise TypeError
         x = float(value)
     except (TypeError, ValueError):
         raise ValueError(f"{name}={value!r} is not a number; it must be in [{lo:g}, {hi:g}]") from None
+    except OverflowError:  # an int beyond the float range
+        x = math.inf
     if not (math.isfinite(x) and lo <= x <= hi):
         raise ValueError(f"{name}={value!r} is outside the sane range [{lo:g}, {hi:g}]")
     return x

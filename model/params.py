@@ -35,9 +35,13 @@ _RANGES = {
 def _check(name: str, value) -> float:
     lo, hi, lo_open, hi_open, meaning = _RANGES[name]
     try:
+        if isinstance(value, (bool, np.bool_, str, bytes)):  # float() would accept these
+            raise TypeError
         x = float(value)
     except (TypeError, ValueError):
         raise ValueError(f"{name}={value!r} is not a number; {meaning} must be a real number") from None
+    except OverflowError:  # an int beyond the float range
+        x = math.inf
     lo_ok = x > lo if lo_open else x >= lo
     hi_ok = x < hi if hi_open else x <= hi
     if not (math.isfinite(x) and lo_ok and hi_ok):

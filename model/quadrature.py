@@ -88,10 +88,16 @@ def integrate(f, a: float, b: float, tol, control=None, edges=None, max_interval
         split = share > 1.0
         if not np.any(split):
             split = share >= share.max()
+        # Within max_intervals, bisect the roughest intervals first; never drop one
+        # (the partition must keep covering [a, b]).
+        budget = max_intervals - len(intervals)
+        if np.count_nonzero(split) > budget:
+            split = np.zeros_like(split)
+            split[np.argsort(-share, kind="stable")[:budget]] = True
         refined = []
         for (lo, hi), s in zip(intervals, split):
             refined += [(lo, 0.5 * (lo + hi)), (0.5 * (lo + hi), hi)] if s else [(lo, hi)]
-        intervals = refined[:max_intervals] if len(refined) > max_intervals else refined
+        intervals = refined
     nodes = np.concatenate([0.5 * (lo + hi) + 0.5 * (hi - lo) * NODES for lo, hi in intervals])
     values = np.concatenate([cache[iv][2] for iv in intervals])
     return QuadratureResult(integral=kron.sum(axis=0), error=err.sum(axis=0),

@@ -40,7 +40,9 @@ def simulate_support(params: Params, rtol: float = 1e-6, atol: float | None = No
     """
     if not isinstance(params, Params):
         raise TypeError(f"params must be a model.Params, not {type(params).__name__}")
-    if isinstance(samples, bool) or not float(samples).is_integer() or not 0 <= samples <= 10**6:
+    if not (isinstance(samples, (int, float, np.integer, np.floating))
+            and not isinstance(samples, bool) and 0 <= samples <= 10**6
+            and float(samples).is_integer()):
         raise ValueError(f"samples={samples!r} must be a whole number in [0, 1e6]")
     options = SolverOptions(rtol=rtol, atol=atol, method=method, max_steps=max_steps,
                             tau_max=tau_max)

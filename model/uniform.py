@@ -83,8 +83,13 @@ def uniform_array(params: Params, beta="self", tol: float = 1e-3, rtol: float | 
     ``rtol=None`` integrates each member at tol/100 (at most 1e-5), so the integration
     error stays well below the quadrature tolerance.
     """
+    if not isinstance(params, Params):
+        raise TypeError(f"params must be a model.Params, not {type(params).__name__}")
     if not (isinstance(tol, (int, float)) and 1e-8 <= tol <= 0.5):
         raise ValueError(f"tol={tol!r} must be in [1e-8, 0.5]")
+    if isinstance(max_intervals, bool) or not isinstance(max_intervals, (int, np.integer)) \
+            or max_intervals < 1:
+        raise ValueError(f"max_intervals={max_intervals!r} must be a whole number >= 1")
     if isinstance(beta, str) and beta != "self":
         raise ValueError(f"beta={beta!r} must be 'self' or a number in (0, 1]")
     if rtol is None and isinstance(tol, (int, float)):

@@ -64,12 +64,17 @@ def lu_factor(M, piv):
 
 @njit(cache=True, error_model="numpy", inline="always")
 def lu_solve(M, piv, b):
-    """Solve in place with the factors of ``lu_factor``."""
+    """Solve in place with the factors of ``lu_factor``.
+
+    ``lu_factor`` swaps whole rows (the multipliers of earlier columns too), so it
+    factors P M = L U: every row swap is applied to b before the forward substitution.
+    """
     n = M.shape[0]
     for k in range(n):
         p = piv[k]
         if p != k:
             b[k], b[p] = b[p], b[k]
+    for k in range(n):
         for i in range(k + 1, n):
             b[i] -= M[i, k] * b[k]
     for k in range(n - 1, -1, -1):

@@ -34,6 +34,9 @@ class CommandParser(argparse.ArgumentParser):
         # argparse says "argument --k-r: ..."; keep just the flag.
         message = re.sub(r"^argument ([^:]+): ", r"\1: ", message)
         message = re.sub(r"^the following arguments are required: (.+)$", r"\1: required", message)
+        # Unrecognized arguments are echoed as given: escape line breaks and control
+        # characters, so the error stays one line and cannot drive the terminal.
+        message = "".join(c if c.isprintable() else repr(c)[1:-1] for c in message)
         self.exit(2, f"{self.prog}: error: {message}\n")
 
 
