@@ -8,7 +8,9 @@ all sessions; runners are per session.
 
 ``LatestOnly`` gives the issue's "a newer request supersedes an older one": at most one
 job of a runner is in flight; while it runs, only the newest request waits; results of
-superseded requests are dropped.
+superseded requests are dropped. When its session is destroyed (the browser went away),
+a runner drops its waiting job, cancels its job if still queued, ignores a late result
+and lets go of the session's document.
 """
 from __future__ import annotations
 
@@ -134,7 +136,8 @@ class LatestOnly:
     ``apply(result, error)`` receives the outcome of the newest job (``error`` is the
     exception or None) with the document locked, so it may update models directly.
     ``busy(flag)`` is told when work starts and when the runner falls idle. Without a
-    server session (tests, scripts) jobs run immediately and synchronously.
+    server session (tests, scripts) jobs run immediately and synchronously. Once the
+    session is destroyed (``close``), nothing is started or applied any more.
     """
 
     def __init__(self, apply, busy=None):
@@ -143,17 +146,21 @@ class LatestOnly:
         self._pending = None
         self._running = False
         self._doc = None
+        self._future = None  # of the job in flight
+        self.closed = False
         self.generation = 0
 
     def submit(self, start) -> None:
         """Queue ``start``: a callable returning a ``concurrent.futures.Future``."""
+        if self.closed:
+            return
         self.generation += 1
         self._pending = start
         doc = _session_doc()
         if doc is None:
             self._run_now()
             return
-        self._doc = doc
+        self._bind(doc)
         if not self._running:
             self._running = True
             self._call(self._busy, True)
@@ -166,11 +173,14 @@ class LatestOnly:
     def submit_later(self, start, delay_ms: int) -> None:
         """``submit(start)`` once nothing newer was asked for during ``delay_ms`` (so
         background work waits until a slider stops moving)."""
+        if self.closed:
+            return
         self.generation += 1
         doc = _session_doc()
         if doc is None:
             self.submit(start)
             return
+        self._bind(doc)
         generation = self.generation
 
         def later():
@@ -182,6 +192,22 @@ class LatestOnly:
         """Forget the waiting job and ignore the result of the running one."""
         self.generation += 1
         self._pending = None
+
+    def close(self, *_session_context) -> None:
+        """The session ended: forget the waiting job, cancel the job in flight if it has
+        not started yet (a running one cannot be stopped; its result is ignored), start
+        nothing more and drop the document."""
+        self.closed = True
+        self.cancel()
+        if self._future is not None:
+            self._future.cancel()
+        self._doc = None
+
+    def _bind(self, doc) -> None:
+        """Work for ``doc``'s session, and stop when that session is destroyed."""
+        if doc is not self._doc:
+            self._doc = doc
+            doc.on_session_destroyed(self.close)
 
     def _run_now(self) -> None:
         start, self._pending = self._pending, None
@@ -195,7 +221,8 @@ class LatestOnly:
         """Start the waiting job: (its generation, its future or the exception it raised)."""
         start, self._pending = self._pending, None
         try:
-            return self.generation, start()
+            self._future = start()
+            return self.generation, self._future
         except Exception as exc:
             return self.generation, exc
 
@@ -207,6 +234,10 @@ class LatestOnly:
                     if isinstance(future, Exception):
                         raise future
                     result, error = await asyncio.wrap_future(future), None
+                except asyncio.CancelledError:
+                    if not future.cancelled():  # this task itself is cancelled
+                        raise
+                    result, error = None, None  # cancelled by ``close``: nothing to show
                 except Exception as exc:
                     result, error = None, exc
                 if generation == self.generation:
@@ -214,23 +245,37 @@ class LatestOnly:
                 job = self._start() if self._pending is not None else None
         finally:
             self._running = False
+            self._future = None
             self._call(self._busy, False)
 
     def _call(self, fn, *args) -> None:
         """Run ``fn(*args)`` on the session's document with its lock held."""
-        if fn is None:
+        if fn is None or self.closed:
             return
         if self._doc is None:
             fn(*args)
             return
+        doc = self._doc
 
         def locked():
+            # Bokeh's own hold: the changes leave through Bokeh's locked write path when
+            # it is released. Left to pn.io.hold alone, Panel 1.9 writes them itself and,
+            # under load, can leave a session's last update unsent (its _dispatch_msgs
+            # clears the write block of messages queued meanwhile).
+            if self.closed:
+                return
+            held = doc.callbacks.hold_value
+            if not held:
+                doc.hold("combine")
             try:
                 fn(*args)
             except Exception:
                 log.exception("dashboard update failed")
+            finally:
+                if not held:
+                    doc.unhold()
         try:
-            self._doc.add_next_tick_callback(locked)
+            doc.add_next_tick_callback(locked)
         except Exception:  # the session has closed meanwhile
             log.debug("session gone; update dropped")
 

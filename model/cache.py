@@ -18,8 +18,10 @@ Guarantees:
 * on read the stored key, version and checksum are verified; a corrupted,
   truncated, unreadable or stale file is logged, deleted where possible and treated
   as a miss, so it is recomputed and never returned;
-* an ``OSError`` on write (read-only folder, full disk) turns writing off with one
-  logged warning instead of raising;
+* an ``OSError`` on write (read-only folder, full disk) turns writing to that folder
+  off for the rest of the process, with one logged warning instead of raising (a sweep
+  makes a ``DiskCache`` per point: still one warning); a folder that cannot exist (its
+  parent is a file) is a miss on read;
 * the folder is bounded (``max_entries``, ``max_bytes``): the least recently used
   entries (oldest mtime; a hit refreshes it) are evicted.
 
@@ -54,6 +56,8 @@ _TMP_MAX_AGE = 3600.0  # seconds before an orphaned temporary file is removed
 _ENTRY = re.compile(r"[0-9a-f]{64}\.npz")
 _TMP = re.compile(r"[0-9a-f]{16}\..*\.tmp")
 _VERSION_DIR = re.compile(r"v\d[\w.+-]*")
+#: Folders found not writable in this process: no ``DiskCache`` writes there again.
+_UNWRITABLE: set[Path] = set()
 
 
 def package_version() -> str:
@@ -154,7 +158,7 @@ class DiskCache:
         self.path = self.root / f"v{self.version}"
         self.max_entries = int(max_entries)
         self.max_bytes = None if max_bytes is None else int(max_bytes)
-        self.writable = True  # turned off after the first OSError on write
+        self.writable = self.path not in _UNWRITABLE  # off after an OSError on write
 
     def __repr__(self):
         return f"DiskCache({str(self.path)!r}, writable={self.writable})"
@@ -174,7 +178,7 @@ class DiskCache:
         path = self.file_for(key)
         try:
             entry = self._read(path, canonical_json(key))
-        except FileNotFoundError:
+        except (FileNotFoundError, NotADirectoryError):
             return None
         except Exception as exc:  # anything unreadable is discarded, never returned
             log.warning("cache file %s is invalid (%s); discarding it and recomputing", path, exc)
@@ -215,8 +219,10 @@ class DiskCache:
             self._write_atomic(self.file_for(key), payload)
         except OSError as exc:
             self.writable = False
-            log.warning("disk cache %s is not writable (%s); continuing without a disk cache",
-                        self.path, exc)
+            if self.path not in _UNWRITABLE:
+                _UNWRITABLE.add(self.path)
+                log.warning("disk cache %s is not writable (%s); continuing without a disk "
+                            "cache", self.path, exc)
             return False
         self._evict()
         return True

@@ -49,13 +49,15 @@ def _status(url: str) -> int | None:
 
 
 @contextlib.contextmanager
-def serve_app(log_path: Path, app_dir: str = "app", timeout_s: float = 60.0, warmup: bool = True):
+def serve_app(log_path: Path, app_dir: str = "app", timeout_s: float = 60.0, warmup: bool = True,
+              extra_args: tuple[str, ...] = ()):
     """Run ``panel serve <app_dir>`` from the repository root on a free loopback port.
 
     Compiles the model's kernel first (``python -m model warmup``), waits until
     ``/liveness?endpoint=/<app>`` answers 200 (a real session of the app was built), yields
     the base URL (``http://127.0.0.1:<port>``) and stops the server on exit. The server's
     output goes to ``log_path``. Raises ``ServerError`` (with the log's tail) otherwise.
+    ``extra_args`` are appended to the ``panel serve`` command line.
     """
     if warmup:
         subprocess.run([sys.executable, "-m", "model", "warmup"], cwd=ROOT, check=True,
@@ -65,7 +67,7 @@ def serve_app(log_path: Path, app_dir: str = "app", timeout_s: float = 60.0, war
     panel = shutil.which("panel", path=os.path.dirname(sys.executable))
     command = ([panel] if panel else [sys.executable, "-m", "panel"]) + [
         "serve", app_dir, "--port", str(port), "--address", "127.0.0.1",
-        f"--allow-websocket-origin=127.0.0.1:{port}", "--liveness"]
+        f"--allow-websocket-origin=127.0.0.1:{port}", "--liveness", *extra_args]
     log = open(log_path, "w", encoding="utf-8")
     env = dict(os.environ, PYTHONUNBUFFERED="1")
     process = subprocess.Popen(command, cwd=ROOT, stdout=log, stderr=subprocess.STDOUT, env=env)

@@ -1,0 +1,358 @@
+"""Faults: failing model runs, dying workers, sessions that go away mid-computation, and a
+disk cache that cannot be written.
+
+(a) A run that fails or exhausts its budget shows a message and the session stays usable.
+    (A future that raises is covered by tests/test_app_state.py.)
+(b) A session destroyed while its work runs (the browser went away) frees that work: its
+    waiting job never starts, queued work is cancelled, a late result is dropped and the
+    runner lets go of the session's document.
+(c) A read-only, full or impossible disk-cache folder degrades to no disk cache with one
+    logged warning for a whole sweep, and the results are still computed. (Single
+    ``DiskCache`` objects are covered by tests/test_cache.py.)
+"""
+from __future__ import annotations
+
+import asyncio
+import concurrent.futures as cf
+import errno
+import functools
+import gc
+import logging
+import math
+import os
+import signal
+import sys
+import threading
+import time
+import weakref
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from app import jobs  # noqa: E402
+from app.jobs import LatestOnly  # noqa: E402
+from app.state import ExplorerState  # noqa: E402
+from model import cache as cache_mod  # noqa: E402
+from model.sweeps import regime_map  # noqa: E402
+
+
+# ---------------------------------------------------------------------- (a) failing runs
+
+@pytest.fixture(scope="module")
+def dashboard():
+    """One dashboard without a server: jobs run synchronously (in the worker processes)."""
+    from app.views import Dashboard
+
+    return Dashboard(ExplorerState())
+
+
+def _orbit(page):
+    return np.asarray(page.support._sources["orbit"].data["x1"], dtype=float).copy()
+
+
+def _in_process(worker):
+    """A ``support_future`` that runs ``compute_support`` here, so patches of the worker
+    module (a smaller budget, a failing function) take effect."""
+    def support_future(params, beta="self", rtol=1e-6, samples=worker.SAMPLES):
+        future = cf.Future()
+        future.set_result(worker.compute_support(params, beta, rtol, samples))
+        return future
+    return support_future
+
+
+@pytest.mark.parametrize("budget, expected", [
+    (dict(max_steps=20), "step budget"),
+    (dict(tau_max=1.0), "time budget tau_max"),
+])
+def test_a_run_over_its_budget_shows_why_and_the_next_change_computes(dashboard, monkeypatch,
+                                                                      budget, expected):
+    from app.views import support as support_view
+
+    worker = jobs.worker_module()
+    state = dashboard.state
+    state.reset()
+    assert dashboard.support.error == "" and not dashboard.alert.visible
+    monkeypatch.setattr(worker, "simulate_support",
+                        functools.partial(worker.simulate_support, **budget))
+    monkeypatch.setattr(support_view, "support_future", _in_process(worker))
+    state.F_N = 2.0
+    data = dashboard.support.data
+    assert data.params.F_N == 2.0 and data.result is not None and not data.result.success
+    assert "did not reach its end" in dashboard.support.error
+    assert expected in dashboard.support.error
+    assert dashboard.alert.visible and "did not reach its end" in dashboard.alert.object
+    assert np.all(np.isfinite(_orbit(dashboard)))  # the partial contact is drawn, sanely
+
+    monkeypatch.undo()  # the real workers again
+    state.F_N = 3.0
+    data = dashboard.support.data
+    assert data.params.F_N == 3.0 and data.result.success
+    assert dashboard.support.error == "" and not dashboard.alert.visible
+    state.reset()
+
+
+def test_a_model_that_raises_keeps_the_last_good_plots_and_recovers(dashboard, monkeypatch):
+    from app.views import support as support_view
+
+    worker = jobs.worker_module()
+    state = dashboard.state
+    state.reset()
+    before = _orbit(dashboard)
+
+    def broken(*args, **kwargs):
+        raise FloatingPointError("overflow in the friction law (simulated)")
+
+    monkeypatch.setattr(worker, "fixed_orientation", broken)
+    monkeypatch.setattr(support_view, "support_future", _in_process(worker))
+    state.theta0 = 120.0
+    assert "The model raised FloatingPointError" in dashboard.support.error
+    assert dashboard.alert.visible and "simulated" in dashboard.alert.object
+    np.testing.assert_array_equal(_orbit(dashboard), before)  # the last good plots stay
+
+    monkeypatch.undo()
+    state.theta0 = 121.0
+    assert dashboard.support.error == "" and not dashboard.alert.visible
+    assert dashboard.support.data.params.theta0 == pytest.approx(math.radians(121.0))
+    assert not np.array_equal(_orbit(dashboard), before)
+    state.reset()
+
+
+def test_a_worker_that_dies_mid_run_shows_a_message_and_a_new_worker_takes_over(
+        dashboard, monkeypatch, caplog):
+    from app.views import support as support_view
+
+    state = dashboard.state
+    state.reset()
+    before = _orbit(dashboard)
+    pool = jobs.process_pool("support")
+    pid = pool.submit(os.getpid).result(timeout=120)
+
+    def dying(*args, **kwargs):
+        future = pool.submit(time.sleep, 60)  # a run that would take a minute ...
+        threading.Timer(0.5, os.kill, (pid, signal.SIGKILL)).start()  # ... killed (OOM)
+        return future
+
+    monkeypatch.setattr(support_view, "support_future", dying)
+    state.F_N = 2.0
+    assert "BrokenProcessPool" in dashboard.support.error and dashboard.alert.visible
+    np.testing.assert_array_equal(_orbit(dashboard), before)
+
+    monkeypatch.undo()
+    with caplog.at_level(logging.WARNING, logger=jobs.__name__):
+        state.F_N = 3.0
+    assert dashboard.support.error == "" and not dashboard.alert.visible
+    assert dashboard.support.data.params.F_N == 3.0 and dashboard.support.data.result.success
+    assert jobs.process_pool("support") is not pool
+    assert any("stopped" in r.getMessage() for r in caplog.records)
+    state.reset()
+
+
+# ---------------------------------------------------------------------- (b) sessions that end
+
+class SessionDoc:
+    """What ``LatestOnly`` uses of a Bokeh server session's ``Document``, on an asyncio
+    loop; ``destroy()`` does what Bokeh does when it discards the session (the browser
+    went away): it runs the ``on_session_destroyed`` callbacks once and forgets them.
+    Any use after that is recorded in ``used_after_destroy``."""
+
+    def __init__(self, name: str):
+        from bokeh.document import Document
+
+        self.name = name
+        self.session_context = object()
+        self.destroyed = False
+        self.used_after_destroy: list[str] = []
+        self._bokeh = Document()  # registers (and checks) the destroy callbacks
+
+    def _use(self, what: str) -> None:
+        if self.destroyed:
+            self.used_after_destroy.append(what)
+
+    def add_next_tick_callback(self, callback):
+        self._use("add_next_tick_callback")
+        asyncio.get_running_loop().call_soon(callback)
+
+    def add_timeout_callback(self, callback, timeout_ms):
+        self._use("add_timeout_callback")
+        asyncio.get_running_loop().call_later(timeout_ms / 1000, callback)
+
+    def on_session_destroyed(self, *callbacks):
+        self._bokeh.on_session_destroyed(*callbacks)
+
+    @property
+    def callbacks(self):
+        return self._bokeh.callbacks
+
+    def hold(self, policy="combine"):
+        self._use("hold")
+        self._bokeh.hold(policy)
+
+    def unhold(self):
+        self._bokeh.unhold()
+
+    def destroy(self) -> None:
+        """As bokeh.application.handlers.document_lifecycle does."""
+        self.destroyed = True
+        callbacks = self._bokeh.session_destroyed_callbacks
+        self._bokeh.session_destroyed_callbacks = set()
+        for callback in callbacks:
+            callback(self.session_context)
+
+
+def test_the_fake_session_document_matches_bokeh():
+    from bokeh.document import Document
+
+    real = Document()
+    for name in ("add_next_tick_callback", "add_timeout_callback", "on_session_destroyed",
+                 "session_context", "session_destroyed_callbacks", "callbacks", "hold",
+                 "unhold"):
+        assert hasattr(real, name), name
+    assert hasattr(real.callbacks, "hold_value")
+
+
+async def _until(predicate, timeout_s: float = 30.0) -> None:
+    deadline = time.monotonic() + timeout_s
+    while not predicate():
+        assert time.monotonic() < deadline, "timed out"
+        await asyncio.sleep(0.02)
+
+
+@pytest.fixture
+def own_worker():
+    """A worker process of its own (one process, as each of the app's), shut down after."""
+    pool = jobs.process_pool("faults")
+    pool.submit(abs, -1).result(timeout=120)  # started and warm
+    yield pool
+    jobs._POOLS.pop("faults", None)
+    pool.shutdown(wait=True, cancel_futures=True)
+
+
+def test_a_destroyed_session_frees_its_work(monkeypatch, own_worker):
+    """Session A asks for a long run and, while it runs, for another one; then its browser
+    goes away. Session B's request must not wait for A's second run (never started), A's
+    result must not be applied, and nothing may keep A's document alive."""
+    current = {}
+    monkeypatch.setattr(jobs, "_session_doc", lambda: current.get("doc"))
+    pool = own_worker
+    started, applied = [], {"A": [], "B": []}
+
+    def job(tag: str, seconds: float):
+        def start():
+            started.append(tag)
+            return pool.submit(time.sleep, seconds)
+        return start
+
+    async def scenario():
+        doc_a = SessionDoc("A")
+        current["doc"] = doc_a
+        a = LatestOnly(lambda result, error: applied["A"].append(error))
+        a.submit(job("A1", 1.5))
+        await asyncio.sleep(0.3)  # A1 runs in the worker
+        a.submit(job("A2", 1.5))  # waits for A1 (newest wins)
+        assert started == ["A1"]
+        doc_a.destroy()
+        a.submit(job("A3", 0.0))  # a late event of the ended session starts nothing
+
+        doc_b = SessionDoc("B")
+        current["doc"] = doc_b
+        b = LatestOnly(lambda result, error: applied["B"].append(error))
+        b.submit(job("B1", 0.0))
+        await _until(lambda: applied["B"])
+        await _until(lambda: not a._running)  # A1 has finished; A's runner is idle
+        await asyncio.sleep(0.2)
+        assert started == ["A1", "B1"]  # A2 was dropped with its session
+        assert applied["A"] == [] and applied["B"] == [None]
+        assert doc_a.used_after_destroy == [] and not doc_b.destroyed
+        return weakref.ref(doc_a), a
+
+    doc_ref, runner = asyncio.run(scenario())
+    current.clear()
+    gc.collect()
+    assert doc_ref() is None  # the runner keeps no reference to the ended session
+
+
+def test_a_destroyed_session_cancels_its_queued_work(monkeypatch):
+    """Work still waiting in an executor's queue (behind other sessions' work) is
+    cancelled, so the worker never runs it; a timed request is never sent."""
+    current = {}
+    monkeypatch.setattr(jobs, "_session_doc", lambda: current.get("doc"))
+    queued = cf.Future()  # as returned by an executor whose worker is busy elsewhere
+    started = []
+
+    async def scenario():
+        doc = SessionDoc("A")
+        current["doc"] = doc
+        runner = LatestOnly(lambda result, error: pytest.fail("applied after the end"))
+        runner.submit(lambda: queued)
+        runner.submit_later(lambda: started.append("later") or cf.Future(), 50)
+        await asyncio.sleep(0)
+        doc.destroy()
+        await asyncio.sleep(0.2)
+        assert queued.cancelled()
+        assert started == [] and doc.used_after_destroy == []
+        await _until(lambda: not runner._running, 5.0)
+
+    asyncio.run(scenario())
+
+
+# ---------------------------------------------------------------------- (c) disk cache
+
+def _refuse_temp_files(monkeypatch, tmp_path):
+    def refuse(*args, **kwargs):
+        raise OSError(errno.EROFS, "Read-only file system (simulated)")
+    monkeypatch.setattr(cache_mod.tempfile, "mkstemp", refuse)
+    return tmp_path / "cache"
+
+
+def _full_disk(monkeypatch, tmp_path):
+    def full(*args, **kwargs):
+        raise OSError(errno.ENOSPC, "No space left on device (simulated)")
+    monkeypatch.setattr(cache_mod.os, "fsync", full)
+    return tmp_path / "cache"
+
+
+def _folder_under_a_file(monkeypatch, tmp_path):
+    """Truly unwritable without simulation, also as root: the folder's parent is a file."""
+    blocker = tmp_path / "not-a-folder"
+    blocker.write_text("")
+    return blocker / "cache"
+
+
+SWEEP = dict(k_r=[3.0, 0.01], k_theta=[0.01, 3.0], F_N=1.0, tol=1e-2)
+
+
+@pytest.fixture(scope="module")
+def reference_sweep(tmp_path_factory):
+    """The sweep computed with a working disk cache of its own."""
+    old = os.environ.get(cache_mod.ENV_VAR)
+    os.environ[cache_mod.ENV_VAR] = str(tmp_path_factory.mktemp("good-cache"))
+    try:
+        return regime_map(**SWEEP)
+    finally:
+        if old is None:
+            os.environ.pop(cache_mod.ENV_VAR, None)
+        else:
+            os.environ[cache_mod.ENV_VAR] = old
+
+
+@pytest.mark.parametrize("break_disk", [_refuse_temp_files, _full_disk, _folder_under_a_file],
+                         ids=["read-only", "full", "not-a-folder"])
+def test_a_sweep_on_a_broken_disk_cache_computes_with_one_warning(
+        break_disk, reference_sweep, tmp_path, monkeypatch, caplog):
+    folder = break_disk(monkeypatch, tmp_path)
+    monkeypatch.setenv(cache_mod.ENV_VAR, str(folder))
+    with caplog.at_level(logging.WARNING, logger=cache_mod.__name__):
+        first = regime_map(**SWEEP)
+        again = regime_map(**SWEEP)  # still no disk cache, and no second warning
+    warnings = [r.getMessage() for r in caplog.records if r.levelno >= logging.WARNING]
+    assert len(warnings) == 1 and "not writable" in warnings[0], warnings
+    for result in (first, again):
+        assert bool(np.all(result.columns["success"]))
+        for name in ("FTx_over_mu0FN", "Dy_over_Dx", "Nc_over_Nc0", "beta"):
+            np.testing.assert_array_equal(result.columns[name], reference_sweep.columns[name])
+    leftovers = [p for p in folder.rglob("*")] if folder.is_dir() else []
+    assert [p for p in leftovers if p.is_file()] == []  # no entries, no temporary files
