@@ -1,0 +1,259 @@
+"""Protocol-level browser stand-ins for the load test (benchmarks/load_test.py): a
+session loads the page, opens its websocket, pulls the document and moves sliders with the
+``PATCH-DOC`` messages BokehJS sends; see load_test.py for the method."""
+from __future__ import annotations
+
+import asyncio
+import collections
+import math
+import random
+import re
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+import panel  # noqa: E402,F401  (registers Panel's Bokeh models for the replicas)
+from bokeh.client.websocket import WebSocketClientConnectionWrapper  # noqa: E402
+from bokeh.document import Document  # noqa: E402
+from bokeh.events import DocumentReady  # noqa: E402
+from bokeh.protocol import Protocol  # noqa: E402
+from bokeh.protocol.receiver import Receiver  # noqa: E402
+from bokeh.util.token import get_session_id  # noqa: E402
+from tornado.httpclient import AsyncHTTPClient  # noqa: E402
+from tornado.websocket import websocket_connect  # noqa: E402
+
+
+UPDATE_TIMEOUT_S = 30.0
+OPEN_TIMEOUT_S = 120.0
+#: Pages loading at the same time (people arrive over some seconds, not all at one instant).
+OPENING_AT_ONCE = 2
+THINK_S = (0.2, 0.8)
+DRAG_PROBABILITY, DRAG_STEPS, DRAG_GAP_S = 0.2, 4, 0.03
+
+
+# ------------------------------------------------------------------------------ sessions
+
+class SessionFailure(Exception):
+    """A session could not open, stalled or lost its connection."""
+
+
+class Session:
+    """One browser stand-in (see the module doc): a replica of the page's document."""
+
+    def __init__(self, index: int, base: str, app: str = "app", seed: int = 0):
+        self.index, self.base, self.app = index, base, app
+        self.rng = random.Random(seed * 1000 + index)
+        self.protocol = Protocol()
+        self.receiver = Receiver(self.protocol)
+        self.doc: Document | None = None
+        self.socket = self.conn = None
+        self.session_id = ""
+        self.latencies: list[float] = []
+        self.drag_latencies: list[float] = []
+        self.open_s = math.nan
+        self.errors: list[str] = []
+        self.patches = 0
+        self.orbit_pushes = 0  # patches carrying the orbit's data
+        #: (time, [(kind, attribute)]) of the latest patches from the server, for diagnosis.
+        self.recent: collections.deque = collections.deque(maxlen=12)
+        self._outbox: list = []
+        self._patched = asyncio.Event()
+        self._reader: asyncio.Task | None = None
+        self._closing = False
+
+    # --------------------------------------------------------------- protocol
+    async def _read(self):
+        while True:
+            fragment = await self.socket.read_message()
+            if fragment is None:
+                return None
+            message = await self.receiver.consume(fragment)
+            if message is not None:
+                return message
+
+    async def open(self) -> None:
+        start = time.perf_counter()
+        page = await AsyncHTTPClient().fetch(f"{self.base}/{self.app}",
+                                             request_timeout=OPEN_TIMEOUT_S)
+        match = re.search(r'"token"\s*:\s*"([^"]+)"', page.body.decode())
+        if match is None:
+            raise SessionFailure("no session token in the page")
+        token = match.group(1)
+        self.session_id = get_session_id(token)
+        url = self.base.replace("http://", "ws://", 1) + f"/{self.app}/ws"
+        self.socket = await websocket_connect(url, subprotocols=["bokeh", token],
+                                              max_message_size=50 * 2**20)
+        self.conn = WebSocketClientConnectionWrapper(self.socket)
+        ack = await self._read()
+        if ack is None or ack.msgtype != "ACK":
+            raise SessionFailure(f"expected ACK, got {ack and ack.msgtype}")
+        request = self.protocol.create("PULL-DOC-REQ")
+        await request.send(self.conn)
+        while True:
+            reply = await self._read()
+            if reply is None:
+                raise SessionFailure("connection closed while pulling the document")
+            if reply.msgtype == "ERROR":
+                raise SessionFailure(f"server error: {reply.content.get('text')}")
+            if reply.msgtype == "PULL-DOC-REPLY":
+                break
+        self.doc = Document()
+        reply.push_to_document(self.doc)
+        self.doc.callbacks.on_change_dispatch_to(self)
+        self.sliders = {name: self._find(f"ctl-{name}") for name in
+                        ("theta0", "k_r", "k_theta", "F_N")}
+        self.orbit = next(m for m in self.doc.models if getattr(m, "name", None) == "orbit")
+        self.readout = self._find("readout-fixed")
+        # BokehJS announces a rendered page; Panel holds model updates until it has.
+        self.doc.callbacks.send_event(DocumentReady())
+        await self._flush()
+        self.open_s = time.perf_counter() - start
+        self._reader = asyncio.create_task(self._read_loop())
+
+    def _find(self, css_class: str):
+        for model in self.doc.models:
+            if css_class in (getattr(model, "css_classes", None) or ()):
+                return model
+        raise SessionFailure(f"no model with CSS class {css_class!r} in the page")
+
+    async def _read_loop(self) -> None:
+        try:
+            while True:
+                message = await self._read()
+                if message is None:
+                    if not self._closing:
+                        self.errors.append("the server closed the connection")
+                    return
+                if message.msgtype == "PATCH-DOC":
+                    message.apply_to_document(self.doc, self)
+                    self.patches += 1
+                    events = message.content.get("events", [])
+                    self.orbit_pushes += any((e.get("model") or {}).get("id") == self.orbit.id
+                                             for e in events)
+                    self.recent.append((time.perf_counter(),
+                                        [(e.get("kind"), e.get("attr")) for e in events]))
+                    self._patched.set()
+                elif message.msgtype == "ERROR":
+                    self.errors.append(f"server error: {message.content.get('text')}")
+        except Exception as exc:  # noqa: BLE001 - reported, not raised
+            if not self._closing:
+                self.errors.append(f"reader failed: {type(exc).__name__}: {exc}")
+
+    def _document_patched(self, event) -> None:
+        """Changes made here (not applied from the server) are sent, as BokehJS does."""
+        if event.setter is not self:
+            self._outbox.append(event)
+
+    async def _flush(self) -> None:
+        events, self._outbox = self._outbox, []
+        if events:
+            await self.protocol.create("PATCH-DOC", events).send(self.conn)
+
+    # --------------------------------------------------------------- behaviour
+    def _readout_shows(self, degrees: float) -> bool:
+        return f"θ₀ = {degrees:g}°" in (self.readout.text or "")
+
+    async def _set(self, name: str, value: float) -> None:
+        slider = self.sliders[name]
+        slider.value = value
+        slider.set_from_json("value_throttled", value)  # read-only in Python, as BokehJS sets it
+        await self._flush()
+
+    def _position(self, name: str) -> float:
+        s = self.sliders[name]
+        steps = int(round((s.end - s.start) / s.step))
+        value = s.start + self.rng.randint(0, steps) * s.step
+        if abs(value - s.value) < 0.5 * s.step:  # a move, not the same position
+            value = s.start + ((round((value - s.start) / s.step) + 1) % (steps + 1)) * s.step
+        return round(value, 6)
+
+    async def move(self) -> None:
+        """One slider move (or drag) and the wait for its update."""
+        name = self.rng.choice(list(self.sliders))
+        drag = name == "theta0" and self.rng.random() < DRAG_PROBABILITY
+        self._patched.clear()
+        for step in range(DRAG_STEPS if drag else 1):
+            if step:
+                await asyncio.sleep(DRAG_GAP_S)
+            value = self._position(name)
+            sent, pushes = time.perf_counter(), self.orbit_pushes
+            await self._set(name, value)
+
+        def done() -> bool:
+            # New orbit data was pushed (not necessarily different: on the axis, k_theta
+            # does not change the motion); for theta0 it must be the requested angle's.
+            if self.orbit_pushes == pushes:
+                return False
+            return name != "theta0" or self._readout_shows(value)
+
+        deadline = sent + UPDATE_TIMEOUT_S
+        while not done():
+            left = deadline - time.perf_counter()
+            if left <= 0 or self.errors:
+                raise SessionFailure(f"no update within {UPDATE_TIMEOUT_S:.0f} s after "
+                                     f"{name} = {value}" + (f" ({self.errors[-1]})"
+                                                            if self.errors else "")
+                                     + "; " + self._diagnosis(sent))
+            self._patched.clear()
+            try:
+                await asyncio.wait_for(self._patched.wait(), timeout=left)
+            except asyncio.TimeoutError:
+                pass
+        (self.drag_latencies if drag else self.latencies).append(time.perf_counter() - sent)
+
+    def _diagnosis(self, sent: float) -> str:
+        values = {k: round(m.value, 4) for k, m in self.sliders.items()}
+        recent = [f"{t - sent:+.1f}s {events}" for t, events in self.recent]
+        return f"sliders {values}; latest patches (time after the change): {recent}"
+
+    async def run(self, until: float) -> None:
+        try:
+            while time.perf_counter() < until:
+                await self.move()
+                await asyncio.sleep(self.rng.uniform(*THINK_S))
+        except Exception as exc:  # noqa: BLE001 - counted as a session failure
+            self.errors.append(f"{type(exc).__name__}: {exc}")
+
+    async def close(self) -> None:
+        self._closing = True
+        if self.socket is not None:
+            self.socket.close()
+        if self._reader is not None:
+            try:
+                await asyncio.wait_for(self._reader, timeout=10)
+            except (asyncio.TimeoutError, Exception):  # noqa: BLE001
+                self._reader.cancel()
+
+
+async def open_sessions(base: str, app: str, n: int, seed: int) -> list[Session]:
+    sessions = [Session(i, base, app, seed=seed) for i in range(n)]
+    opening = asyncio.Semaphore(OPENING_AT_ONCE)
+
+    async def one(s: Session):
+        async with opening:
+            try:
+                await asyncio.wait_for(s.open(), timeout=OPEN_TIMEOUT_S)
+            except Exception as exc:  # noqa: BLE001
+                s.errors.append(f"open failed: {type(exc).__name__}: {exc}")
+    await asyncio.gather(*(one(s) for s in sessions))
+    return sessions
+
+
+async def drive(base: str, app: str, n: int, duration: float, seed: int,
+                on_open=None, before_close=None) -> tuple[list[Session], float]:
+    """Open ``n`` sessions, move their sliders for ``duration`` s, close them
+    (``on_open()`` is called once all are open, ``before_close()`` just before closing)."""
+    sessions = await open_sessions(base, app, n, seed)
+    if on_open is not None:
+        on_open()
+    started = time.perf_counter()
+    live = [s for s in sessions if not s.errors]
+    await asyncio.gather(*(s.run(started + duration) for s in live))
+    elapsed = time.perf_counter() - started
+    if before_close is not None:
+        before_close()
+    await asyncio.gather(*(s.close() for s in sessions))
+    return sessions, elapsed
