@@ -29,8 +29,6 @@ from model import mu0
 
 log = logging.getLogger(__name__)
 
-_POOLS: dict[str, cf.ProcessPoolExecutor] = {}
-_POOL_LOCK = threading.Lock()
 #: Process pools, one worker each, so slow work of one kind never holds up another:
 #: "support" the single support (Support tab), "sweep" the polar plots, "array" the
 #: uniform arrays.
@@ -59,11 +57,23 @@ def worker_module():
     return sys.modules[WORKER_MODULE]
 
 
+def _registry() -> tuple[dict, threading.Lock]:
+    """The server process's pools and their lock, kept on the worker module (loaded once
+    per process under a fixed name): Bokeh may load this package more than once in a
+    server (Panel's liveness endpoint builds the app in a copy of its own), and a copy
+    must not start workers of its own."""
+    names = vars(worker_module())
+    # dict.setdefault is atomic: two copies racing here still share one registry.
+    return names.setdefault("_SERVER_POOLS", {}), names.setdefault("_SERVER_POOL_LOCK",
+                                                                    threading.Lock())
+
+
 def process_pool(name: str) -> cf.Executor:
     """The worker process ``name`` (started on first use, restarted if it died); it loads
     ``app/worker.py`` and the compiled kernel when it starts."""
-    with _POOL_LOCK:
-        pool = _POOLS.get(name)
+    pools, lock = _registry()
+    with lock:
+        pool = pools.get(name)
         if pool is None or getattr(pool, "_broken", False):
             if pool is not None:
                 log.warning("dashboard worker %r stopped (%s); starting a new one", name,
@@ -71,7 +81,7 @@ def process_pool(name: str) -> cf.Executor:
             pool = cf.ProcessPoolExecutor(
                 max_workers=1, mp_context=multiprocessing.get_context("spawn"),
                 initializer=exec, initargs=(_BOOT + f"sys.modules[{WORKER_MODULE!r}].warm()\n",))
-            _POOLS[name] = pool
+            pools[name] = pool
         return pool
 
 
@@ -115,9 +125,11 @@ def cached_submit(cache: ResultCache, key, executor: cf.Executor, fn, *args, **k
     try:
         future = executor.submit(fn, *args, **kwargs)
     except (cf.process.BrokenProcessPool, RuntimeError):  # a dead worker: start anew
-        for name, pool in list(_POOLS.items()):
+        pools, lock = _registry()
+        for name, pool in list(pools.items()):
             if pool is executor:
-                _POOLS.pop(name, None)
+                with lock:
+                    pools.pop(name, None)
                 executor = process_pool(name)
         future = executor.submit(fn, *args, **kwargs)
     future.add_done_callback(

@@ -227,7 +227,7 @@ def own_worker():
     pool = jobs.process_pool("faults")
     pool.submit(abs, -1).result(timeout=120)  # started and warm
     yield pool
-    jobs._POOLS.pop("faults", None)
+    jobs._registry()[0].pop("faults", None)
     pool.shutdown(wait=True, cancel_futures=True)
 
 
@@ -356,3 +356,15 @@ def test_a_sweep_on_a_broken_disk_cache_computes_with_one_warning(
             np.testing.assert_array_equal(result.columns[name], reference_sweep.columns[name])
     leftovers = [p for p in folder.rglob("*")] if folder.is_dir() else []
     assert [p for p in leftovers if p.is_file()] == []  # no entries, no temporary files
+
+
+def test_a_second_copy_of_the_app_package_shares_the_workers():
+    """Panel's liveness endpoint builds the app in a copy of the package: that copy must
+    hand work to the same worker processes, not start its own."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("app_copy_jobs", jobs.__file__)
+    copy = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(copy)
+    assert copy is not jobs
+    assert copy.process_pool("support") is jobs.process_pool("support")
