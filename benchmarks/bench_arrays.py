@@ -2,30 +2,39 @@
 
     python benchmarks/bench_arrays.py [--quick] [--out DIR]
 
-Reports medians over repeats (with min/max) for: one fixed-orientation array point
-(beta fixed and self-consistent), a 72-point orientation sweep, and uniform arrays
-with self-consistent beta at quadrature error <= 1e-3, with the error estimates and
-beta residuals of the same runs. The uniform-array LRU caches are cleared before each
-repeat so that every run computes from scratch.
+Reports medians over repeats, each with its min and max, for: one fixed-orientation
+array point (beta fixed and self-consistent), a 72-point orientation sweep, and uniform
+arrays with self-consistent beta at quadrature error <= 1e-3, with the error estimates
+and beta residuals of the same runs; the uniform-array cost against its tolerances;
+batch against single-call throughput; peak memory. Each run is repeated until about
+0.2 s in all, at least 3 times (0.05 s and 1 time for the tolerance table in --quick).
+The uniform-array LRU caches are cleared before each repeat so that every run computes
+from scratch.
 """
 from __future__ import annotations
 
 import argparse
 import json
 import math
+import os
 import platform
-import statistics
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
 
-from model import REGIMES, SolverOptions, fixed_orientation, orientation_sweep, uniform_array
-from model._kernel import warmup
-from model.support import _simulate
-from model.uniform import _uniform
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))  # the repository's model/
+
+from model import REGIMES, SolverOptions, fixed_orientation, orientation_sweep, uniform_array  # noqa: E402
+from model._kernel import warmup  # noqa: E402
+from model.support import _simulate  # noqa: E402
+from model.uniform import _uniform  # noqa: E402
+
+from spread import cell, repeats_for, spread  # noqa: E402
 
 
 def _clear():
@@ -33,37 +42,42 @@ def _clear():
     _uniform.cache_clear()
 
 
-def timed(fn, repeats):
-    """Median, min and max seconds of ``fn()`` over ``repeats`` cold-cache runs, and its last value."""
+MIN_TOTAL = {False: 0.2, True: 0.05}  # seconds to repeat each run for (full, --quick)
+
+
+def timed(fn, min_total, lo=3, hi=21):
+    """Median, min, max seconds and run count of ``fn()`` over cold-cache runs, repeated
+    until about ``min_total`` seconds in all and at least ``lo`` times; and its last value."""
     times, value = [], None
-    for _ in range(repeats):
+    while len(times) < (repeats_for(times[0], min_total, lo, hi) if times else 1):
         _clear()
         start = time.perf_counter()
         value = fn()
         times.append(time.perf_counter() - start)
-    return statistics.median(times), min(times), max(times), value
+    t = spread(times)
+    return t["median"], t["min"], t["max"], t["n"], value
 
 
 def run(quick: bool):
-    repeats = 3 if quick else 7
+    total = MIN_TOTAL[quick]
     theta72 = np.linspace(0, math.pi, 74)[1:-1]
     rows = []
     for name, p in REGIMES.items():
         p1 = p.replace(theta0=1.0)
         for beta in (1.0, "self"):
-            med, lo, hi, r = timed(lambda: fixed_orientation(p1, beta=beta), repeats * 3)
+            med, lo, hi, n, r = timed(lambda: fixed_orientation(p1, beta=beta), total)
             rows.append(dict(what="fixed point", regime=name, beta=str(beta), median_ms=med * 1e3,
-                             min_ms=lo * 1e3, max_ms=hi * 1e3, error=abs(r.energy_residual),
+                             min_ms=lo * 1e3, max_ms=hi * 1e3, runs=n, error=abs(r.energy_residual),
                              error_kind="energy residual", beta_residual=r.beta_residual))
-            med, lo, hi, s = timed(lambda: orientation_sweep(p, theta72, beta=beta), repeats)
+            med, lo, hi, n, s = timed(lambda: orientation_sweep(p, theta72, beta=beta), total)
             rows.append(dict(what="72-point sweep", regime=name, beta=str(beta), median_ms=med * 1e3,
-                             min_ms=lo * 1e3, max_ms=hi * 1e3,
+                             min_ms=lo * 1e3, max_ms=hi * 1e3, runs=n,
                              error=float(np.max(np.abs(s.contacts.energy_residual) / s.contacts.W)),
                              error_kind="max relative energy residual",
                              beta_residual=float(np.max(np.abs(s.beta_residual)))))
-        med, lo, hi, u = timed(lambda: uniform_array(p, tol=1e-3), repeats)
+        med, lo, hi, n, u = timed(lambda: uniform_array(p, tol=1e-3), total)
         rows.append(dict(what="uniform array tol 1e-3", regime=name, beta="self",
-                         median_ms=med * 1e3, min_ms=lo * 1e3, max_ms=hi * 1e3,
+                         median_ms=med * 1e3, min_ms=lo * 1e3, max_ms=hi * 1e3, runs=n,
                          error=u.quadrature_error["FTx_over_mu0FN"],
                          error_kind="quadrature error estimate of F_T,x/(mu0 F_N)",
                          beta_residual=u.beta_residual, trajectories=u.stats["trajectories"],
@@ -76,80 +90,111 @@ def tolerance_costs(quick: bool) -> list:
     and against the members' integration tolerance; the self-consistent beta's extra cost."""
     rows = []
     tols = (1e-2, 1e-3) if quick else (1e-2, 3e-3, 1e-3, 3e-4, 1e-4)
+    reps = dict(min_total=MIN_TOTAL[quick], lo=1 if quick else 3)
     for name in ("pendulum", "slider"):
         p = REGIMES[name]
         for tol in tols:
             for beta in (1.0, "self"):
-                med, _, _, u = timed(lambda: uniform_array(p, tol=tol, beta=beta), 1 if quick else 3)
+                med, lo, hi, n, u = timed(lambda: uniform_array(p, tol=tol, beta=beta), **reps)
                 rows.append(dict(regime=name, tol=tol, rtol=u.stats["rtol"], beta=str(beta),
-                                 ms=med * 1e3, members=u.n_members,
+                                 ms=med * 1e3, min_ms=lo * 1e3, max_ms=hi * 1e3, runs=n,
+                                 members=u.n_members,
                                  trajectories=u.stats["trajectories"],
                                  quad_error=u.quadrature_error["FTx_over_mu0FN"],
                                  integration_error=u.integration_error))
         for rtol in ((1e-4, 1e-6) if quick else (1e-4, 1e-5, 1e-6, 1e-7)):
-            med, _, _, u = timed(lambda: uniform_array(p, tol=1e-3, rtol=rtol, beta=1.0),
-                                 1 if quick else 3)
+            med, lo, hi, n, u = timed(lambda: uniform_array(p, tol=1e-3, rtol=rtol, beta=1.0), **reps)
             rows.append(dict(regime=name, tol=1e-3, rtol=rtol, beta="1.0", ms=med * 1e3,
+                             min_ms=lo * 1e3, max_ms=hi * 1e3, runs=n,
                              members=u.n_members, trajectories=u.stats["trajectories"],
                              quad_error=u.quadrature_error["FTx_over_mu0FN"],
                              integration_error=u.integration_error))
     return rows
 
 
-def throughput() -> dict:
-    """Orientation-sweep trajectories per second against single calls (Python loop)."""
+def throughput(quick: bool) -> dict:
+    """Orientation-sweep trajectories per second against single calls (Python loop):
+    median, and min and max (from the slowest and the fastest run)."""
     p = REGIMES["pendulum"]
     theta = np.linspace(0, math.pi, 202)[1:-1]
-    med, _, _, _ = timed(lambda: orientation_sweep(p, theta, beta=1.0), 3)
-    _clear()
-    start = time.perf_counter()
-    for t in theta:
-        _simulate.__wrapped__(p.replace(theta0=float(t)), SolverOptions(), 0)
-    single = time.perf_counter() - start
-    return {"batch_per_s": theta.size / med, "single_per_s": theta.size / single}
+
+    def singles():
+        for t in theta:
+            _simulate.__wrapped__(p.replace(theta0=float(t)), SolverOptions(), 0)
+
+    out = {}
+    for key, fn in (("batch", lambda: orientation_sweep(p, theta, beta=1.0)), ("single", singles)):
+        med, lo, hi, n, _ = timed(fn, MIN_TOTAL[quick])
+        out.update({f"{key}_per_s": theta.size / med, f"{key}_min_per_s": theta.size / hi,
+                    f"{key}_max_per_s": theta.size / lo, f"{key}_runs": n})
+    return out
 
 
-def peak_rss_mb(code: str) -> float:
-    """Peak resident memory (MB) of a fresh interpreter running ``code``."""
-    script = code + "\nimport resource; print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)"
-    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
-                         check=True, timeout=900)
-    return int(out.stdout.split()[-1]) / 1024
+def peak_rss_mb(codes: dict) -> dict:
+    """Peak resident memory (MB) of a fresh interpreter running each code string.
+
+    Each gets an empty on-disk result cache (``MICROPILLAR_CACHE_DIR``), so that it
+    computes rather than loads. The interpreters run side by side: a process's peak
+    memory does not depend on the others, and nothing is timed meanwhile.
+    """
+    tail = "\nimport resource; print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)"
+    path = os.pathsep.join([str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
+    out = {}
+    with tempfile.TemporaryDirectory() as empty:
+        procs = {name: subprocess.Popen(
+            [sys.executable, "-c", code + tail], stdout=subprocess.PIPE, text=True,
+            env={**os.environ, "PYTHONPATH": path, "MICROPILLAR_CACHE_DIR": str(Path(empty) / str(i))})
+            for i, (name, code) in enumerate(codes.items())}
+        for name, proc in procs.items():
+            stdout, _ = proc.communicate(timeout=900)
+            if proc.returncode:
+                raise RuntimeError(f"peak memory of {name!r}: exit code {proc.returncode}")
+            out[name] = int(stdout.split()[-1]) / 1024
+    return out
 
 
 def memory(quick: bool) -> dict:
     n = 4 if quick else 12
-    return {
-        "uniform array (slider, self-consistent beta)": peak_rss_mb(
-            "from model import REGIMES, uniform_array; uniform_array(REGIMES['slider'])"),
-        f"regime map {n}x{n} (1 process)": peak_rss_mb(
-            f"from model.sweeps import regime_map; regime_map(n={n})"),
-        "import only (baseline)": peak_rss_mb("import model"),
-    }
+    return peak_rss_mb({
+        "uniform array (slider, self-consistent beta)":
+            "from model import REGIMES, uniform_array; uniform_array(REGIMES['slider'])",
+        f"regime map {n}x{n} (1 process)": f"from model.sweeps import regime_map; regime_map(n={n})",
+        "import only (baseline)": "import model",
+    })
+
+
+def ms(v: float) -> str:
+    return f"{v:.3g}" if v < 100 else f"{v:.0f}"
 
 
 def report(rows) -> str:
     head = (f"# Array benchmarks\n\nmachine: {platform.processor() or platform.machine()}, "
             f"python {platform.python_version()}; medians over repeats, cold caches.\n\n"
-            "| computation | regime | beta | median ms | min-max ms | error | beta residual |\n"
-            "|---|---|---|---:|---|---|---:|\n")
-    lines = [f"| {r['what']} | {r['regime']} | {r['beta']} | {r['median_ms']:.2f} | "
-             f"{r['min_ms']:.2f}-{r['max_ms']:.2f} | {r['error']:.1e} ({r['error_kind']}) | "
-             f"{abs(r['beta_residual']):.1e} |" for r in rows]
+            "| computation | regime | beta | ms median [min–max] | runs | error | beta residual |\n"
+            "|---|---|---|---|---:|---|---:|\n")
+    lines = [f"| {r['what']} | {r['regime']} | {r['beta']} | "
+             f"{cell(r['median_ms'], r['min_ms'], r['max_ms'], ms)} | {r['runs']} | "
+             f"{r['error']:.1e} ({r['error_kind']}) | {abs(r['beta_residual']):.1e} |" for r in rows]
     return head + "\n".join(lines) + "\n"
 
 
 def extra_report(costs, rates, mem) -> str:
     lines = ["", "## Uniform array cost against tolerance", "",
-             "| regime | quadrature tol | member rtol | beta | ms | members | trajectories | "
-             "quadrature error | integration error |", "|---|---|---|---|---:|---:|---:|---|---|"]
-    lines += [f"| {c['regime']} | {c['tol']:g} | {c['rtol']:g} | {c['beta']} | {c['ms']:.1f} | "
+             "| regime | quadrature tol | member rtol | beta | ms median [min–max] | runs | members | "
+             "trajectories | quadrature error | integration error |",
+             "|---|---|---|---|---|---:|---:|---:|---|---|"]
+    lines += [f"| {c['regime']} | {c['tol']:g} | {c['rtol']:g} | {c['beta']} | "
+              f"{cell(c['ms'], c['min_ms'], c['max_ms'], ms)} | {c['runs']} | "
               f"{c['members']} | {c['trajectories']} | {c['quad_error']:.1e} | "
               f"{c['integration_error']:.1e} |" for c in costs]
-    lines += ["", f"Orientation sweep throughput (pendulum, 200 orientations): "
-              f"{rates['batch_per_s']:.0f} trajectories/s in one batch vs "
-              f"{rates['single_per_s']:.0f}/s through single calls.", "",
-              "## Peak memory (fresh process)", "", "| computation | peak RSS MB |", "|---|---:|"]
+    rate = lambda k: cell(rates[f"{k}_per_s"], rates[f"{k}_min_per_s"], rates[f"{k}_max_per_s"],  # noqa: E731
+                          lambda v: f"{v:.0f}")
+    lines += ["", f"Orientation sweep throughput (pendulum, 200 orientations), median [min–max] "
+              f"over {rates['batch_runs']} and {rates['single_runs']} runs: "
+              f"{rate('batch')} trajectories/s in one batch vs {rate('single')}/s through "
+              "single calls.", "",
+              "## Peak memory (fresh process, empty disk cache)", "", "| computation | peak RSS MB |",
+              "|---|---:|"]
     lines += [f"| {k} | {v:.0f} |" for k, v in mem.items()]
     return "\n".join(lines) + "\n"
 
@@ -160,16 +205,22 @@ def main():
     ap.add_argument("--out", default="bench-out", help="output folder (default bench-out)")
     args = ap.parse_args()
     print(f"kernel ready in {warmup():.2f} s")
+    phases, t = {}, time.perf_counter()
     rows = run(args.quick)
+    phases["timings"], t = time.perf_counter() - t, time.perf_counter()
     costs = tolerance_costs(args.quick)
-    rates = throughput()
+    phases["tolerance_costs"], t = time.perf_counter() - t, time.perf_counter()
+    rates = throughput(args.quick)
+    phases["throughput"], t = time.perf_counter() - t, time.perf_counter()
     mem = memory(args.quick)
+    phases["peak_rss_mb (subprocesses)"] = time.perf_counter() - t
     text = report(rows) + extra_report(costs, rates, mem)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     (out / "arrays.md").write_text(text)
     (out / "arrays.json").write_text(json.dumps(
-        {"timings": rows, "tolerance_costs": costs, "throughput": rates, "peak_rss_mb": mem},
+        {"timings": rows, "tolerance_costs": costs, "throughput": rates, "peak_rss_mb": mem,
+         "phases_wall_s": phases},
         indent=1, default=float))
     print(text)
 

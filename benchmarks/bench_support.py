@@ -4,10 +4,14 @@
 
 For each case the exit state (x, y, v_x, v_y, theta at tau_out) is compared with a
 tight scipy DOP853 reference (cached in DIR/reference_cache.json). Every method runs
-over a sweep of rtol (atol = rtol/100); the time needed for a target error is found
-by log-log interpolation along the sweep. Writes DIR/support.md, DIR/support.json and
-a work-precision plot (DIR/work_precision.png with matplotlib, DIR/work_precision.html
-with bokeh) and prints the headline table.
+over a sweep of rtol (atol = rtol/100); each time is the median over repeated runs,
+reported with its min and max, and the time needed for a target error is found by
+log-log interpolation along the sweep. A scipy run is aborted past ABORT seconds, and
+once one takes more than CAP seconds the tighter tolerances of that sweep are skipped
+(tighter takes no less time); the report lists every such cut. Writes DIR/support.md,
+DIR/support.json and the work-precision plots against the exit-state error and against
+the energy-balance residual (DIR/work_precision.html with bokeh, screenshot to
+DIR/work_precision.png; or the PNG with matplotlib) and prints the headline table.
 """
 from __future__ import annotations
 
@@ -18,7 +22,6 @@ import json
 import math
 import os
 import platform
-import statistics
 import subprocess
 import sys
 import tempfile
@@ -29,18 +32,25 @@ import numba
 import numpy as np
 import scipy
 
-from model import REGIMES, Params, SolverOptions, simulate_support
-from model import _kernel
-from model.support import _simulate
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repository's model/
 
-from plots import plot
-from scipy_baselines import score, sweep_scipy
+from model import REGIMES, Params, SolverOptions, simulate_support  # noqa: E402
+from model import _kernel  # noqa: E402
+from model.support import _simulate  # noqa: E402
+
+from plots import plot  # noqa: E402
+from scipy_baselines import CUT, score, sweep_scipy  # noqa: E402
+from spread import cell, repeats_for, spread  # noqa: E402
 
 OURS = ("auto", "explicit", "implicit")
 SCIPY = {"full": ("RK45", "DOP853", "LSODA", "Radau"), "quick": ("RK45", "DOP853")}
 RTOLS = {"full": [10.0**-k for k in range(3, 11)], "quick": [1e-4, 1e-6, 1e-8]}
 REF_RTOL = {"full": 1e-13, "quick": 1e-12}
-TIME_LIMIT = {"full": 15.0, "quick": 2.0}  # seconds of wall time per scipy sweep (case, method)
+# Seconds per scipy run: past ABORT a run is aborted; after a run over CAP the tighter
+# tolerances of its sweep are skipped. Both cuts are listed in the report.
+CAP = {"full": 0.5, "quick": 0.25}
+ABORT = {"full": 3.0, "quick": 1.0}
+MIN_TOTAL = {"full": 0.1, "quick": 0.05}  # repeat a scipy run until about this many seconds, >= 3 times
 TAU_MAX = SolverOptions().tau_max
 STARTUP = "from model import REGIMES, simulate_support; simulate_support(REGIMES['pendulum'])"
 
@@ -75,35 +85,45 @@ def reference(name: str, params: Params, rtol: float, cache_file: Path) -> dict:
     return cache[key]
 
 
-def time_calls(fns: list, min_loop=0.02, repeats=5) -> list:
-    """Per-call seconds of each fn: the median over `repeats` of a loop lasting >= min_loop.
+def time_calls(fns: list, firsts=None, min_loop=0.02, min_total=0.1, max_repeats=5) -> list:
+    """Per-call seconds of each fn (median, min, max, n) over repeated loops of >= min_loop.
 
-    The loops of the different fns are interleaved, so that a burst of other load on
-    the machine hits them alike.
+    Each fn's loop is repeated until about `min_total` seconds, at least 3 and at most
+    `max_repeats` times. `firsts`: seconds of one call already made, to size the loops
+    (else one call is made). The loops of the different fns are interleaved, so that a
+    burst of other load on the machine hits them alike.
     """
-    counts = []
-    for fn in fns:
-        start = time.perf_counter()
-        fn()
-        counts.append(max(1, math.ceil(min_loop / max(time.perf_counter() - start, 1e-9))))
+    counts, rounds = [], []
+    for i, fn in enumerate(fns):
+        one = firsts[i] if firsts else None
+        if one is None:
+            start = time.perf_counter()
+            fn()
+            one = time.perf_counter() - start
+        counts.append(max(1, math.ceil(min_loop / max(one, 1e-9))))
+        rounds.append(repeats_for(counts[-1] * one, min_total, 3, max_repeats))
     per_call = [[] for _ in fns]
-    for _ in range(repeats):
-        for fn, n, out in zip(fns, counts, per_call):
+    for k in range(max(rounds, default=0)):
+        for fn, n, r, out in zip(fns, counts, rounds, per_call):
+            if k >= r:
+                continue
             start = time.perf_counter()
             for _ in range(n):
                 fn()
             out.append((time.perf_counter() - start) / n)
-    return [statistics.median(t) for t in per_call]
+    return [spread(t) for t in per_call]
 
 
 def sweep_ours(params: Params, rtols: list, ref: dict) -> dict:
     """method -> rows of the rtol sweep of the compiled methods, timed on the uncached path."""
     rows = {m: [] for m in OURS}
     for rtol in rtols:
-        calls = {}
+        calls, firsts = {}, []
         for m in OURS:
             options = SolverOptions(rtol=rtol, method=m)
+            start = time.perf_counter()
             res = _simulate.__wrapped__(params, options, 0)
+            first = time.perf_counter() - start
             row = {"method": m, "rtol": rtol, "success": res.success,
                    "status": "ok" if res.success else res.message,
                    "n_rhs": res.stats["n_rhs"], "stats": dict(res.stats)}
@@ -112,8 +132,9 @@ def sweep_ours(params: Params, rtols: list, ref: dict) -> dict:
                 row["rel_energy"] = res.relative_energy_residual
                 score(row, res.t_out, res.state_out, ref)
                 calls[m] = functools.partial(_simulate.__wrapped__, params, options, 0)
-        for m, seconds in zip(calls, time_calls(list(calls.values()))):
-            rows[m][-1]["seconds"] = seconds
+                firsts.append(first)
+        for m, t in zip(calls, time_calls(list(calls.values()), firsts)):
+            rows[m][-1].update(seconds=t["median"], min_s=t["min"], max_s=t["max"], n_runs=t["n"])
     return rows
 
 
@@ -128,11 +149,12 @@ def _rhs_loop(u, P, out, n):
     return acc
 
 
-def rhs_cost(params: Params, n=200_000) -> float:
-    """Seconds per compiled right-hand-side evaluation (median of 5 loops)."""
+def rhs_cost(params: Params, n=200_000) -> dict:
+    """Seconds per compiled right-hand-side evaluation (median, min, max of 5 loops)."""
     u, P, out = _kernel.initial_state(params), _kernel.pack(params), np.zeros(_kernel.N_STATE)
     _rhs_loop(u, P, out, 10)
-    return time_calls([lambda: _rhs_loop(u, P, out, n)])[0] / n
+    t = time_calls([lambda: _rhs_loop(u, P, out, n)], min_total=0.2)[0]
+    return {k: (v / n if k != "n" else v) for k, v in t.items()}
 
 
 def at_error(rows: list, target: float, key="seconds"):
@@ -152,37 +174,56 @@ def at_error(rows: list, target: float, key="seconds"):
     return None, "not reached"
 
 
-def summarize(rows: dict, target: float, cost: float) -> dict:
-    """Times at the target error, the headline ratios and the RHS lower bound.
+def summarize(rows: dict, target: float, cost: dict) -> dict:
+    """Times at the target error (median, min, max), the headline ratios, the RHS bound.
 
-    A method whose sweep was cut by the time budget before reaching the target gets its
+    A method whose sweep was cut by the time cap before reaching the target gets its
     longest run as a lower bound (tighter tolerances take no less time), marked ">".
     """
-    at = {}
+    at, spreads = {}, {}
     for m, sweep in rows.items():
         at[m] = at_error(sweep, target)
-        if at[m][0] is None and any("time budget" in r["status"] for r in sweep):
+        if at[m][0] is None and any(r["status"].startswith(CUT) for r in sweep):
             at[m] = (max(r.get("seconds") or r.get("elapsed") or 0.0 for r in sweep), ">")
+        elif at[m][0] is not None:
+            spreads[m] = [at_error(sweep, target, key)[0] * 1e6 for key in ("min_s", "max_s")]
     auto = at["auto"][0]
     best = min((at[m][0] for m in ("explicit", "implicit") if at[m][0] is not None), default=None)
     rk, rk_note = at["RK45"]
     n_rhs, _ = at_error(rows["auto"], target, key="n_rhs")
     return {"target": target, "at_target_us": {m: (v * 1e6 if v else None, n) for m, (v, n) in at.items()},
+            "at_target_minmax_us": spreads,
             "rk45_over_auto": (rk / auto if rk and auto else None, rk_note),
             "auto_over_best_ours": auto / best if auto and best else None,
-            "rhs_bound_us": n_rhs * cost * 1e6 if n_rhs else None}
+            "rhs_bound_us": n_rhs * cost["median"] * 1e6 if n_rhs else None}
 
 
 def findings(case: str, rows: dict) -> list:
     """Failed runs of any method, and every scipy run that beats auto at equal error."""
     out = [f"{case}: {m} failed at rtol={r['rtol']:g}: {r['status']}" for m, sweep in rows.items()
-           for r in sweep if not r["success"] and "time budget" not in r["status"]]
+           for r in sweep if not r["success"] and not r["status"].startswith(CUT)]
     for m in (m for m in rows if m not in OURS):
         for r in (r for r in rows[m] if r["success"]):
             auto, _ = at_error(rows["auto"], r["error"])
             if auto is not None and auto > r["seconds"]:
                 out.append(f"{case}: auto ({auto * 1e6:.0f} us) slower than {m} ({r['seconds'] * 1e6:.0f}"
                            f" us) at error {r['error']:.2g} (rtol={r['rtol']:g})")
+    return out
+
+
+def cuts(case: str, rows: dict) -> list:
+    """The scipy runs left out by the time cap, one line per cut sweep."""
+    out = []
+    for m, sweep in rows.items():
+        aborted = [r for r in sweep if r["status"].startswith("aborted")]
+        skipped = [r for r in sweep if r["status"].startswith("skipped")]
+        if not aborted and not skipped:
+            continue
+        parts = [f"run at rtol {r['rtol']:g} stopped after {r['elapsed']:.2g} s" for r in aborted]
+        if skipped:
+            span = f"{skipped[0]['rtol']:g}" + (f" ... {skipped[-1]['rtol']:g}" if len(skipped) > 1 else "")
+            parts.append(f"rtol {span} {skipped[0]['status']}")
+        out.append(f"{case}: {m}: " + "; ".join(parts))
     return out
 
 
@@ -198,7 +239,9 @@ def startup(repeats: int) -> dict:
     warm = [run(os.environ.copy()) for _ in range(repeats + 1)][1:]
     with tempfile.TemporaryDirectory() as empty:
         cold = run({**os.environ, "NUMBA_CACHE_DIR": empty})
-    return {"warm_median_s": statistics.median(warm), "warm_s": warm, "cold_compile_s": cold}
+    w = spread(warm)
+    return {"warm_median_s": w["median"], "warm_min_s": w["min"], "warm_max_s": w["max"],
+            "warm_s": warm, "cold_compile_s": cold}
 
 
 def machine() -> dict:
@@ -219,7 +262,7 @@ def fmt(v, digits=3) -> str:
 
 def headline(results: dict, methods: list) -> str:
     """One row per case: times at the target error and the headline ratios."""
-    cols = ["case", "target err"] + [f"{m} us" for m in methods] + [
+    cols = ["case", "target err"] + [f"{m} us [min–max]" for m in methods] + [
         "RK45/auto (goal >= 50)", "auto/best ours (goal <= 1.2)", "RHS bound us"]
     lines = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
     for case, res in results.items():
@@ -227,8 +270,11 @@ def headline(results: dict, methods: list) -> str:
         cells = [case, f"{s['target']:g}"]
         for m in methods:
             v, note = s["at_target_us"][m]
-            mark = {"<=": " (loosest rtol)", ">": " (budget)"}.get(note, "")
-            cells.append((">" if note == ">" else "") + fmt(v) + mark if v else note)
+            mark = {"<=": " (loosest rtol)", ">": " (cap)"}.get(note, "")
+            if v and m in s["at_target_minmax_us"]:
+                cells.append(cell(v, *s["at_target_minmax_us"][m], fmt=fmt) + mark)
+            else:
+                cells.append((">" if note == ">" else "") + fmt(v) + mark if v else note)
         rk, note = s["rk45_over_auto"]
         cells += [(">" if note == ">" else "") + fmt(rk), fmt(s["auto_over_best_ours"]),
                   fmt(s["rhs_bound_us"])]
@@ -238,27 +284,33 @@ def headline(results: dict, methods: list) -> str:
 
 def sweep_table(rows: dict) -> str:
     """Every run of one case: time, errors, energy residual, RHS calls, status."""
-    lines = ["| method | rtol | us | error | t_out error | rel. energy | n_rhs | status |",
-             "|---|---|---|---|---|---|---|---|"]
+    lines = ["| method | rtol | us median [min–max] | runs | error | t_out error | rel. energy | n_rhs "
+             "| status |", "|---|---|---|---|---|---|---|---|---|"]
     for m, sweep in rows.items():
         for r in sweep:
             sec = r.get("seconds")
-            lines.append(f"| {m} | {r['rtol']:g} | {fmt(sec * 1e6 if sec else None)} | "
+            us = cell(sec * 1e6, r["min_s"] * 1e6, r["max_s"] * 1e6, fmt) if sec else "-"
+            lines.append(f"| {m} | {r['rtol']:g} | {us} | {r.get('n_runs', '-')} | "
                          f"{fmt(r.get('error'), 2)} | {fmt(r.get('t_error'), 2)} | "
                          f"{fmt(r.get('rel_energy'), 2)} | {r.get('n_rhs', '-')} | {r['status'][:80]} |")
     return "\n".join(lines)
 
 
-def report(info, results, methods, start, notes, cost, limit) -> tuple[str, str]:
+def report(info, results, methods, start, notes, cut_notes, cost, cap, abort) -> tuple[str, str]:
     """(headline printed to stdout, full markdown report)."""
+    ns = lambda v: f"{v * 1e9:.0f}"  # noqa: E731
     head = "\n".join([
-        "Times per trajectory (us) at the target error, log-log interpolated over the rtol sweep.",
-        "", headline(results, methods), "",
-        f"Each scipy sweep gets {limit:g} s; a run over it is aborted and tighter rtols are skipped;",
-        "'>' (budget) marks a lower bound from the longest run of such a sweep.",
-        f"RHS cost {cost * 1e9:.0f} ns per call (compiled); RHS bound = cost x auto's n_rhs at target.",
-        f"Process start to first trajectory: {start['warm_median_s']:.2f} s with the compile cache "
-        f"(median of {len(start['warm_s'])}), {start['cold_compile_s']:.2f} s cold (empty NUMBA_CACHE_DIR).",
+        "Times per trajectory (us) at the target error: median [min–max] over repeated runs,",
+        "each log-log interpolated over the rtol sweep.", "", headline(results, methods), "",
+        f"A scipy run is aborted after {abort:g} s; once a run takes more than {cap:g} s, the tighter",
+        "rtols of its sweep are skipped (a tighter rtol takes no less time). '>' (cap) marks a lower",
+        "bound from the longest run of a sweep so cut before reaching the target.",
+        f"RHS cost {cell(cost['median'], cost['min'], cost['max'], ns)} ns per call (compiled, median "
+        f"[min–max] of {cost['n']} loops); RHS bound = median cost x auto's n_rhs at target.",
+        f"Process start to first trajectory: {start['warm_median_s']:.2f} s [{start['warm_min_s']:.2f}–"
+        f"{start['warm_max_s']:.2f}] with the compile cache (median [min–max] of {len(start['warm_s'])}), "
+        f"{start['cold_compile_s']:.2f} s cold (one run, empty NUMBA_CACHE_DIR).",
+        "", "Scipy runs cut by the time cap:", *(f"- {n}" for n in cut_notes or ["none"]),
         "", "Failed runs, and scipy runs faster than auto at equal error:",
         *(f"- {n}" for n in notes or ["none"])])
     machine_lines = [f"- {k}: {v}" for k, v in info.items()]
@@ -281,23 +333,36 @@ def main(argv=None) -> int:
         _simulate.__wrapped__(REGIMES["pendulum"], SolverOptions(method=m), 0)
     cost = rhs_cost(REGIMES["pendulum"])
     methods = list(OURS) + list(SCIPY[mode])
-    results, notes = {}, []
+    results, notes, cut_notes, phases = {}, [], [], {}
+
+    def lap(what, since):  # wall and CPU seconds of each part, for the JSON
+        phases[what] = {"wall_s": time.perf_counter() - since[0], "cpu_s": time.process_time() - since[1]}
+        return time.perf_counter(), time.process_time()
+
     for case, (params, target) in cases(mode).items():
+        t = time.perf_counter(), time.process_time()
         ref = reference(case, params, REF_RTOL[mode], args.out / "reference_cache.json")
+        t = lap(f"{case} | reference", t)
         rows = sweep_ours(params, RTOLS[mode], ref)
+        t = lap(f"{case} | ours", t)
         for m in SCIPY[mode]:
-            rows[m] = sweep_scipy(params, m, RTOLS[mode], ref, TIME_LIMIT[mode],
-                                  repeats=1 if mode == "quick" else 3)
+            rows[m] = sweep_scipy(params, m, RTOLS[mode], ref, cap=CAP[mode], abort=ABORT[mode],
+                                  min_total=MIN_TOTAL[mode])
+            t = lap(f"{case} | {m}", t)
         results[case] = {"params": params.as_dict(), "reference": ref, "rows": rows,
                          "summary": summarize(rows, target, cost)}
         notes += findings(case, rows)
+        cut_notes += cuts(case, rows)
         print(f"[{time.perf_counter() - t0:5.1f} s] {case} done", file=sys.stderr, flush=True)
+    t = time.perf_counter(), time.process_time()
     start = startup(repeats=3)
+    lap("startup (subprocesses)", t)
     info = machine()
-    head, full = report(info, results, methods, start, notes, cost, TIME_LIMIT[mode])
+    head, full = report(info, results, methods, start, notes, cut_notes, cost, CAP[mode], ABORT[mode])
     print(head)
     (args.out / "support.md").write_text(full)
-    info.update(mode=mode, rhs_cost_s=cost, startup=start, findings=notes,
+    info.update(mode=mode, rhs_cost_s=cost, startup=start, findings=notes, cuts=cut_notes,
+                cap_s=CAP[mode], abort_s=ABORT[mode], phases_s=phases,
                 wall_s=time.perf_counter() - t0, cases=results)
     (args.out / "support.json").write_text(json.dumps(info, indent=1, default=str))
     for note in plot(results, args.out):

@@ -1,8 +1,7 @@
-"""scipy solve_ivp baselines for the support benchmark, with a wall-time budget."""
+"""scipy solve_ivp baselines for the support benchmark, under a wall-time cap."""
 from __future__ import annotations
 
 import math
-import statistics
 import time
 
 import numpy as np
@@ -11,6 +10,10 @@ from scipy.integrate import solve_ivp
 from model import Params, SolverOptions
 from model.energy import elastic_energy, kinetic_energy
 from model.reference import reference_rhs
+
+from spread import repeats_for, spread
+
+CUT = ("aborted:", "skipped:")  # statuses of runs left out by the time cap
 
 TAU_MAX = SolverOptions().tau_max
 
@@ -56,48 +59,57 @@ def relative_energy(params: Params, u) -> float:
     return abs(u[5] - (u[7] + u[8] + U + K)) / max(abs(u[5]), 1e-300)
 
 
-def timed_scipy(params, method, rtol, left, repeats):
-    """(solution, times of the completed runs, seconds spent); runs over 0.25 s are not repeated.
+def timed_scipy(params, method, rtol, abort, cap, min_total):
+    """(solution, seconds of the completed runs); the solution is None when the first run
+    went over `abort` seconds.
 
-    The solution is None when the first run went over the `left` seconds.
+    A run is repeated until about `min_total` seconds in all, at least 3 times, unless
+    it took more than `cap` seconds (it then ends its sweep and is not repeated).
     """
-    sol, done, spent = None, [], 0.0
-    while len(done) < repeats and (not done or done[-1] < 0.25):
+    sol, done = None, []
+    while True:
         start = time.perf_counter()
         try:
-            sol = solve_scipy(params, method, rtol, left - spent)
+            sol = solve_scipy(params, method, rtol, abort)
         except OverBudget:
-            spent += time.perf_counter() - start
-            break
+            if not done:
+                return None, [time.perf_counter() - start]
+            break  # a repeat slowed down by other load: keep the completed runs
         done.append(time.perf_counter() - start)
-        spent += done[-1]
-    return sol, done, spent
+        if done[0] > cap or len(done) >= repeats_for(done[0], min_total):
+            return sol, done
+    return sol, done
 
 
-def sweep_scipy(params, method, rtols, ref, budget, repeats) -> list:
-    """The rtol sweep of one scipy method, within `budget` seconds of wall time.
+def sweep_scipy(params, method, rtols, ref, cap, abort, min_total) -> list:
+    """The rtol sweep of one scipy method, loosest rtol first, under a time cap.
 
-    A run is aborted when it would exceed what is left of the budget, and a tolerance
-    is skipped once the previous run took longer than what is left (a tighter
-    tolerance takes no less time).
+    A run is aborted after `abort` seconds; once a run was aborted or took more than
+    `cap` seconds, the tighter tolerances are skipped (a tighter tolerance takes no less
+    time). Such rows get the status "aborted: > A s at rtol R" or "skipped: > X s at
+    rtol R".
     """
-    rows, spent, last = [], 0.0, 0.0
+    rows, stop = [], None
     for rtol in rtols:
         row = {"method": method, "rtol": rtol, "success": False}
         rows.append(row)
-        if last > budget - spent:
-            row["status"] = "skipped: over time budget"
+        if stop:
+            row["status"] = stop
             continue
-        sol, times, used = timed_scipy(params, method, rtol, budget - spent, repeats)
-        spent += used
-        last = times[-1] if times else math.inf
-        if not times:
-            row.update(status=f"aborted: over time budget ({budget:g} s per sweep)", elapsed=used)
-        elif sol.status != 1:
+        sol, times = timed_scipy(params, method, rtol, abort, cap, min_total)
+        if sol is None:
+            row.update(status=f"aborted: > {abort:g} s at rtol {rtol:g}", elapsed=times[0])
+            stop = f"skipped: > {abort:g} s at rtol {rtol:g}"
+            continue
+        if times[0] > cap:
+            stop = f"skipped: > {cap:g} s at rtol {rtol:g}"
+        if sol.status != 1:
             row["status"] = f"no exit: {sol.message}"
         else:
             u = sol.y_events[0][0]
-            row.update(success=True, status="ok", seconds=statistics.median(times),
-                       n_rhs=int(sol.nfev), rel_energy=relative_energy(params, u))
+            t = spread(times)
+            row.update(success=True, status="ok", seconds=t["median"], min_s=t["min"],
+                       max_s=t["max"], n_runs=t["n"], n_rhs=int(sol.nfev),
+                       rel_energy=relative_energy(params, u))
             score(row, float(sol.t_events[0][0]), u, ref)
     return rows

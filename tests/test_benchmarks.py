@@ -1,5 +1,6 @@
 """The benchmark scripts run (``--quick``) so they cannot rot; their reports are checked."""
 import json
+import struct
 import subprocess
 import sys
 from pathlib import Path
@@ -17,15 +18,38 @@ def _run(script: str, out: Path, *extra) -> str:
     return done.stdout
 
 
+def _spread_ok(lo, med, hi) -> bool:
+    return 0 < lo <= med <= hi
+
+
 @pytest.mark.slow
 def test_support_benchmark_quick(tmp_path):
     _run("bench_support.py", tmp_path)
     report = (tmp_path / "support.md").read_text()
     assert "RK45/auto" in report and "Failed runs" in report
+    assert "Scipy runs cut by the time cap:" in report
+    # Every timing table gives the median with its min and max.
+    assert "auto us [min–max]" in report and "us median [min–max]" in report
     data = json.loads((tmp_path / "support.json").read_text())
     assert data  # raw numbers written
     # The compiled methods beat scipy's RK45 at equal error on the default case.
     assert "| pendulum pi/2 |" in report
+    for case in data["cases"].values():
+        for rows in case["rows"].values():
+            for r in (r for r in rows if r["success"]):
+                assert _spread_ok(r["min_s"], r["seconds"], r["max_s"]) and r["n_runs"] >= 1
+            for r in (r for r in rows if not r["success"]):
+                assert r["status"]  # a cut or failed run says why
+    # The work-precision figure has, per case, a panel against the energy-balance residual.
+    html = tmp_path / "work_precision.html"
+    if html.exists():  # bokeh installed
+        text = html.read_text()
+        for case in data["cases"]:
+            assert f"error: {case}" in text and f"rel_energy: {case}" in text
+        assert "energy-balance residual" in text
+    png = tmp_path / "work_precision.png"
+    if png.exists():  # two 700-px panels side by side
+        assert struct.unpack(">I", png.read_bytes()[16:20])[0] >= 1400
 
 
 @pytest.mark.slow
@@ -34,4 +58,26 @@ def test_arrays_benchmark_quick(tmp_path):
     data = json.loads((tmp_path / "arrays.json").read_text())
     assert {"timings", "tolerance_costs", "throughput", "peak_rss_mb"} <= data.keys()
     assert all(r["median_ms"] > 0 for r in data["timings"])
+    for r in data["timings"] + data["tolerance_costs"]:
+        ms = r.get("median_ms", r.get("ms"))
+        assert _spread_ok(r["min_ms"], ms, r["max_ms"]) and r["runs"] >= 1
     assert data["throughput"]["batch_per_s"] > data["throughput"]["single_per_s"]
+    report = (tmp_path / "arrays.md").read_text()
+    assert report.count("ms median [min–max]") == 2 and "trajectories/s in one batch" in report
+
+
+@pytest.mark.slow
+def test_run_all_dashboard_server_side(tmp_path):
+    """run_all.py runs a script and totals its time; the dashboard table has min/max."""
+    done = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "run_all.py"), "--quick",
+                           "--no-browser", "--only", "bench_dashboard.py", "--out", str(tmp_path)],
+                          cwd=ROOT, capture_output=True, text=True, timeout=900)
+    assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
+    summary = json.loads((tmp_path / "run_all.json").read_text())
+    assert list(summary["scripts"]) == ["bench_dashboard.py"]
+    assert summary["total"]["wall_s"] > 0 and "total" in done.stdout
+    report = (tmp_path / "dashboard.md").read_text()
+    assert "median ms [min–max]" in report and "| support view compute |" in report
+    data = json.loads((tmp_path / "dashboard.json").read_text())
+    for s in data["server"].values():
+        assert _spread_ok(s["min_ms"], s["p50_ms"], s["max_ms"])
