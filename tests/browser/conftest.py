@@ -6,6 +6,10 @@ Chromium is Debian's ``/usr/bin/chromium`` driven by Playwright's sync API.
 Where Chromium or Playwright is missing the tests skip with the reason, except in CI
 (``CI`` or ``MICROPILLAR_REQUIRE_BROWSER`` set): there they fail instead.
 
+The browser and the server live as long as this package's tests (scope "package"):
+Playwright's sync API keeps an event loop running in the main thread while it is open,
+which would break the asyncio code of later test modules.
+
 Artifacts (``artifacts/`` at the repository root): ``dashboard.png`` (the default page),
 ``panel-serve.log`` (the server's log of the last run) and, for a failed test,
 ``failed-<test>.png`` with ``failed-<test>.console.txt``. ``MICROPILLAR_BROWSER_APP``
@@ -71,7 +75,7 @@ def artifacts_dir() -> Path:
     return ARTIFACTS
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="package")
 def server_log(tmp_path_factory, artifacts_dir):
     """The server's log: private to this session, copied to artifacts/ at its end."""
     path = tmp_path_factory.mktemp("panel-serve") / "panel-serve.log"
@@ -80,7 +84,7 @@ def server_log(tmp_path_factory, artifacts_dir):
     shutil.copyfile(path, artifacts_dir / "panel-serve.log")
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="package")
 def app_server(browser, server_log):
     """``panel serve app`` on a free loopback port; yields the base URL (no trailing /).
 
@@ -93,12 +97,12 @@ def app_server(browser, server_log):
         pytest.fail(str(error), pytrace=False)
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="package")
 def app_url(app_server) -> str:
     return f"{app_server}/{Path(APP_DIR).name}"
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="package")
 def browser():
     """Debian's headless Chromium, launched by Playwright."""
     if not Path(CHROMIUM).exists():
