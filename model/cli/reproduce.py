@@ -25,7 +25,7 @@ def add_command(commands) -> None:
     p.add_argument("--out", required=True, metavar="DIR",
                    help="folder to write into (created if missing)")
     p.add_argument("--resolution", choices=("full", "coarse"), default="full",
-                   help="full: the figures as published (default; a few minutes on 2 cores); "
+                   help="full: the figures as published (default; 1-5 min on 2 cores, less with a warm cache); "
                         "coarse: a quick check of the pipeline")
     p.add_argument("--workers", type=whole, default=2, metavar="N",
                    help="processes for the uniform-array sweeps (default 2)")

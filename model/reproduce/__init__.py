@@ -91,7 +91,7 @@ def reproduce(out, resolution="full", workers: int = 1, png="auto",
               progress=None) -> Reproduction:
     """Regenerate every figure of the paper into the folder ``out`` and check its findings.
 
-    ``resolution``: ``"full"`` (the figures as published; a few minutes) or ``"coarse"``
+    ``resolution``: ``"full"`` (the figures as published; 1-5 min on 2 cores) or ``"coarse"``
     (a quick check of the pipeline), or a ``Resolution``. ``workers``: processes for the
     uniform-array sweeps. ``png``: ``"auto"`` (when a browser is available), ``True``
     (fail without one) or ``False``. ``progress(stage, done, total)`` reports progress.
