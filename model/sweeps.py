@@ -259,6 +259,10 @@ def _solver_settings(args: dict) -> dict:
                   method=args["method"])
     if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
         raise ValueError(f"workers={workers!r} must be a whole number >= 1")
+    intervals = args["max_intervals"]
+    if isinstance(intervals, bool) or not isinstance(intervals, (int, np.integer)) \
+            or intervals < 1:
+        raise ValueError(f"max_intervals={intervals!r} must be a whole number >= 1")
     if args["scheduler"] is not None and workers != 1:
         raise ValueError(f"workers={workers!r} must be 1 when a scheduler is given")
     return dict(tol=float(tol), beta=beta, rtol=args["rtol"], atol=args["atol"],

@@ -229,3 +229,9 @@ def test_sweep_points_come_from_the_disk_cache(tmp_path, monkeypatch):
     monkeypatch.setenv("MICROPILLAR_CACHE_DIR", str(tmp_path))
     third = sweeps_mod.regime_map(k_r=[1.0, 3.0], k_theta=[3.0], tol=1e-2)
     np.testing.assert_array_equal(third.columns["FTx_over_mu0FN"], first.columns["FTx_over_mu0FN"])
+
+
+@pytest.mark.parametrize("bad", [None, 0, -3, 2.5, "64", True])
+def test_bad_max_intervals_is_named_before_any_work(bad):
+    with pytest.raises(ValueError, match="max_intervals="):
+        sweeps.regime_map(n=1, max_intervals=bad)
