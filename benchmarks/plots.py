@@ -63,8 +63,8 @@ def plot_html(curves: dict, targets: dict, path: Path) -> None:
 
 def html_to_png(html: Path, png: Path) -> None:
     """Screenshot a saved Bokeh page with Debian's headless Chromium (the reproduction's
-    renderer, ``model.reproduce.render``)."""
-    from model.reproduce.render import html_to_png as render
+    renderer, ``app.reproduce.render``)."""
+    from app.reproduce.render import html_to_png as render
 
     render([(html, png)])
 

@@ -104,8 +104,8 @@ def key_digest(key: dict, version: str) -> str:
     return hashlib.sha256(text.encode()).hexdigest()
 
 
-#: Subpackages that only draw or parse what the model computed.
-PRESENTATION = ("figures", "reproduce", "cli")
+#: Subpackages that only gather, tabulate or parse what the model computed.
+PRESENTATION = ("reproduce", "cli")
 
 
 @functools.lru_cache(maxsize=1)
@@ -113,8 +113,8 @@ def code_digest() -> str:
     """sha256 of the model package's Python sources: results change when the code does,
     even between released versions (an edited checkout), so the code is part of every key.
 
-    The drawing and command-line layers (``PRESENTATION``) compute nothing that is cached,
-    so editing a figure does not throw away hours of sweep points."""
+    The reproduction and command-line layers (``PRESENTATION``) compute nothing that is
+    cached, so editing a report does not throw away hours of sweep points."""
     root = Path(__file__).parent
     h = hashlib.sha256()
     for path in sorted(root.rglob("*.py")):

@@ -1,4 +1,4 @@
-"""Each figure function of ``model.figures`` on its data: axes, ranges, the right curves."""
+"""Each figure function of ``app.figures`` on its data: axes, ranges, the right curves."""
 import math
 
 import numpy as np
@@ -6,7 +6,7 @@ import pytest
 from bokeh.models import LogScale
 
 from model import REGIMES, mu0, orientation_table, simulate_support
-from model import figures as F
+from app import figures as F
 from model.shipped_map import load_regime_map
 
 
@@ -129,13 +129,14 @@ def test_rms_fig10f():
     assert isinstance(fig.y_scale, LogScale)
 
 
-def test_figures_import_no_panel():
+def test_model_imports_no_plotting_or_app_code():
+    """The reproduction's computing half stays free of Bokeh, Panel and the app."""
     import subprocess
     import sys
 
-    code = ("import sys, model.figures, model.reproduce; "
-            "print(sorted(m for m in sys.modules if m.split('.')[0] in "
-            "('panel', 'holoviews', 'param', 'app')))")
+    code = ("import sys, model, model.reproduce, model.cli; "
+            "print(sorted({m.split('.')[0] for m in sys.modules} & "
+            "{'bokeh', 'panel', 'holoviews', 'param', 'app'}))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout
     assert out.strip() == "[]"

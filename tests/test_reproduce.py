@@ -1,4 +1,5 @@
-"""``python -m model reproduce``: a coarse reproduction into a temporary folder.
+"""``python -m app.reproduce`` (data and report from ``model.reproduce``, pictures drawn by
+the app): a coarse reproduction into a temporary folder.
 
 Every figure file and CSV must exist and be non-empty, the CSVs must carry their
 parameters and read back, and the report must list every finding of MODEL.md with a
@@ -10,9 +11,13 @@ import re
 import numpy as np
 import pytest
 
+from app.reproduce import reproduce
+from app.reproduce.__main__ import main as app_main
+from app.reproduce.figures import DRAW
+from app.reproduce.render import browser_problem
 from model.cli import main
-from model.reproduce import FIGURES, reproduce
-from model.reproduce.render import browser_problem
+from model.reproduce import FIGURES
+from model.reproduce import reproduce as compute_only
 from model.sweeps import read_csv
 
 from browser.conftest import browser_required
@@ -113,31 +118,45 @@ def test_progress_covers_every_stage(coarse):
     from model.reproduce import all_stages
 
     seen = [s for s, _, _ in stages]
-    expected = [s for s in all_stages("coarse") if s != "PNG pictures" or not rep.png_note]
-    assert sorted(set(seen), key=seen.index) == expected
-    assert all(d == t for s, d, t in stages if s == "figures and CSV" and d == t) and any(
-        d == t for s, d, t in stages if s == "figures and CSV")
+    assert sorted(set(seen), key=seen.index) == all_stages("coarse")
+    for name in ("CSV tables", "figures"):
+        assert any(s == name and d == t for s, d, t in stages)
 
 
-def test_a_second_run_reads_the_cache(coarse, tmp_path):
+def test_a_second_run_reads_the_cache_and_needs_no_drawing(coarse, tmp_path):
     rep, _ = coarse
-    again = reproduce(tmp_path, resolution="coarse", png=False)
+    again = compute_only(tmp_path, resolution="coarse")
     assert again.data.seconds["regime map (Fig. 5)"] < 1.0
     assert [c.value for c in again.checks] == [c.value for c in rep.checks]
+    assert all(f.html is None and f.png is None and f.csv.is_file() for f in again.figures)
+    assert [p.name for p in tmp_path.glob("*.html")] == ["index.html"]
+    assert (tmp_path / "report.md").is_file()
 
 
 def test_specs_are_unique_and_complete():
     assert len({f.key for f in FIGURES}) == len(FIGURES) == len(PAPER_FIGURES)
+    assert set(DRAW) == {f.key for f in FIGURES}  # every table has its picture
 
 
 @pytest.mark.parametrize("argv, flag", [
     (["reproduce"], "--out"),
     (["reproduce", "--out", "x", "--resolution", "fine"], "--resolution"),
     (["reproduce", "--out", "x", "--workers", "0"], "--workers"),
-    (["reproduce", "--out", "x", "--png", "--no-png"], "--no-png"),
+    (["reproduce", "--out", "x", "--png"], "--png"),  # pictures are the app's
 ])
 def test_cli_bad_usage(argv, flag, capsys):
     assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert flag in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("argv, flag", [
+    ([], "--out"),
+    (["--out", "x", "--png", "--no-png"], "--no-png"),
+    (["--out", "x", "--resolution", "fine"], "--resolution"),
+])
+def test_app_cli_bad_usage(argv, flag, capsys):
+    assert app_main(argv) == 2
     err = capsys.readouterr().err
     assert flag in err and "Traceback" not in err
 

@@ -1,5 +1,5 @@
 """The dashboard's views (``pn.viewable.Viewer`` subclasses), each reading one
-``ExplorerState`` and drawing with the figure functions of ``model.figures``."""
+``ExplorerState`` and drawing with the figure functions of ``app.figures``."""
 from .arrays import LoadView, RegimeMapView
 from .controls import Controls
 from .page import Dashboard

@@ -14,9 +14,9 @@ from bokeh.palettes import Cividis256, Viridis256
 from model import REGIMES
 from model.shipped_map import load_regime_map
 
-from model import figures as F
+from .. import figures as F
 from ..compute import LOAD_F_N, sweep_row, uniform_future
-from model.figures.arrays import MAP_QUANTITIES
+from ..figures.arrays import MAP_QUANTITIES
 from ..jobs import LatestOnly
 from ..state import ExplorerState
 from .readouts import ReadoutsView

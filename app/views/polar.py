@@ -14,7 +14,7 @@ import panel as pn
 import param
 from bokeh.events import Tap
 
-from model import figures as F
+from .. import figures as F
 from ..compute import POLAR_N, polar_cached, polar_future
 from ..jobs import LatestOnly
 from ..state import SWEEP_KEYS, ExplorerState

@@ -16,7 +16,7 @@ import time
 import panel as pn
 import param
 
-from model import figures as F
+from .. import figures as F
 from ..compute import SAMPLES, SupportData, support_future
 from ..jobs import LatestOnly
 from ..state import SUPPORT_KEYS, ExplorerState

@@ -11,8 +11,8 @@ array
 sweep
     A parameter sweep behind one of the paper's figures, written to a CSV file.
 reproduce
-    Every figure of the paper regenerated (HTML, PNG, CSV) and its findings checked in a
-    report (``report.md``, ``index.html``).
+    Every figure's data of the paper as CSV, and its findings checked in a report
+    (``report.md``, ``index.html``); ``python -m app.reproduce`` adds the pictures.
 warmup
     Compile the kernel into numba's on-disk cache (run once after installing).
 

@@ -1,5 +1,5 @@
-"""``python -m model reproduce --out DIR``: every figure of the paper regenerated, every
-finding checked (see ``model.reproduce``).
+"""``python -m model reproduce --out DIR``: every figure's data computed, every finding
+checked (see ``model.reproduce``); ``python -m app.reproduce`` adds the pictures.
 
 Progress is drawn on stderr, one bar per stage; the summary (checks that agree and differ,
 the files written) goes to stdout. Exit codes: 0 done (differences from the paper are
@@ -16,25 +16,25 @@ from .sweep import ProgressBar
 
 def add_command(commands) -> None:
     p = commands.add_parser(
-        "reproduce", help="regenerate every figure of the paper and check its findings",
-        description="Regenerate Figs. 3, 5a/b, 6, 7a/b, 8a/b, 10a-f and 11a-c of the paper "
-                    "as HTML, PNG (when Chromium and Playwright are available) and CSV, and "
-                    "write report.md and index.html checking the paper's findings against the "
-                    "computed numbers. Uniform-array points are kept in the on-disk cache, so "
-                    "a second run is quick.")
+        "reproduce", help="compute every figure of the paper as CSV and check its findings",
+        description="Compute the data of Figs. 3, 5a/b, 6, 7a/b, 8a/b, 10a-f and 11a-c of "
+                    "the paper as CSV files, and write report.md and index.html checking the "
+                    "paper's findings against the computed numbers. Uniform-array points are "
+                    "kept in the on-disk cache, so a second run is quick. The pictures (HTML, "
+                    "PNG): python -m app.reproduce with the same flags.")
+    add_arguments(p)
+    p.set_defaults(run=run)
+
+
+def add_arguments(p) -> None:
+    """``--out``, ``--resolution`` and ``--workers``."""
     p.add_argument("--out", required=True, metavar="DIR",
                    help="folder to write into (created if missing)")
     p.add_argument("--resolution", choices=("full", "coarse"), default="full",
-                   help="full: the figures as published (default; 1-5 min on 2 cores, less with a warm cache); "
-                        "coarse: a quick check of the pipeline")
+                   help="full: the figures as published (default; 1-5 min on 2 cores, less "
+                        "with a warm cache); coarse: a quick check of the pipeline")
     p.add_argument("--workers", type=whole, default=2, metavar="N",
                    help="processes for the uniform-array sweeps (default 2)")
-    png = p.add_mutually_exclusive_group()
-    png.add_argument("--png", dest="png", action="store_const", const=True, default="auto",
-                     help="require PNG pictures (fail without a browser)")
-    png.add_argument("--no-png", dest="png", action="store_const", const=False,
-                     help="skip the PNG pictures")
-    p.set_defaults(run=run)
 
 
 class StageProgress:
@@ -55,7 +55,8 @@ class StageProgress:
             self.bar.close()
 
 
-def run(args) -> int:
+def run(args, draw=None) -> int:
+    """Run it; ``draw`` as in ``model.reproduce.reproduce`` (None: tables and report only)."""
     from ..reproduce import reproduce
 
     out = Path(args.out)
@@ -65,8 +66,8 @@ def run(args) -> int:
         raise UsageError("--workers", f"{args.workers} must be at least 1")
     progress = StageProgress(sys.stderr)
     try:
-        rep = reproduce(out, resolution=args.resolution, workers=args.workers, png=args.png,
-                        progress=progress)
+        rep = reproduce(out, resolution=args.resolution, workers=args.workers,
+                        progress=progress, draw=draw)
     except KeyboardInterrupt:
         progress.close()
         print(f"{PROG} reproduce: interrupted; {out} is incomplete", file=sys.stderr)
@@ -74,15 +75,16 @@ def run(args) -> int:
     except OSError as error:
         progress.close()
         raise UsageError("--out", f"cannot write into {str(out)!r}: {error}") from None
-    except RuntimeError as error:  # PNGs required but no browser
+    except RuntimeError as error:  # pictures required but impossible
         progress.close()
         raise UsageError("--png", str(error)) from None
     progress.close()
     agree = len(rep.checks) - rep.n_differ
-    print(f"{len(rep.figures)} figures ({'with' if not rep.png_note else 'without'} PNG) in "
-          f"{rep.seconds:.0f} s; {agree} of {len(rep.checks)} checks agree with the paper, "
-          f"{rep.n_differ} differ (see the report)")
+    pictures = sum(f.png is not None for f in rep.figures)
+    print(f"{len(rep.figures)} figures ({pictures} with PNG) in {rep.seconds:.0f} s; "
+          f"{agree} of {len(rep.checks)} checks agree with the paper, {rep.n_differ} differ "
+          "(see the report)")
     print(f"report: {rep.report}\nindex:  {rep.index}")
     if rep.png_note:
-        print(f"no PNG pictures: {rep.png_note}")
+        print(f"pictures missing: {rep.png_note}")
     return 0

@@ -1,17 +1,18 @@
-"""Reproduce the paper: every figure regenerated, every finding checked.
+"""Reproduce the paper: every figure's data computed, every finding checked.
 
 ``reproduce(out)`` (or ``python -m model reproduce --out DIR``) computes the data behind
-Figs. 3, 5a/b, 6, 7a/b, 8a/b, 10a-f and 11a-c, draws each with the dashboard's figure
-functions (``model.figures``), and writes into ``out``:
+Figs. 3, 5a/b, 6, 7a/b, 8a/b, 10a-f and 11a-c and writes into ``out``:
 
-* ``figN.html`` -- a standalone interactive figure (BokehJS inlined, opens offline);
-* ``figN.png`` -- its picture, when Playwright and Chromium are available;
-* ``figN.csv`` -- its data, with the parameters and solver settings in a ``# key: value``
-  header (``model.sweeps.read_csv`` reads it back);
+* ``figN.csv`` -- each figure's data, with the parameters and solver settings in a
+  ``# key: value`` header (``model.sweeps.read_csv`` reads it back);
 * ``report.md`` and ``index.html`` -- the findings of the paper (MODEL.md 1-7) against
   the computed numbers with their error estimates, where the model differs, and how
   the headline numbers move with the choices the paper left open.
 
+Drawing is the caller's (this package imports no plotting library): ``draw(data, out,
+progress)`` returns, per figure key, the HTML file and the PNG file (or None) it wrote,
+and a note on pictures it could not make. ``python -m app.reproduce`` passes the
+dashboard's figure functions (standalone HTML, and PNG through headless Chromium).
 Uniform-array points go through the on-disk cache, so a second run is quick.
 """
 from __future__ import annotations
@@ -21,23 +22,23 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..sweeps import SweepResult
-from . import findings, render, report, sensitivity
+from . import findings, report, sensitivity
 from .datasets import RESOLUTIONS, Data, Resolution, compute, stages
-from .figures import FIGURES, FigureSpec
+from .tables import FIGURES, FigureSpec
 
 __all__ = ["reproduce", "Reproduction", "FigureFiles", "RESOLUTIONS", "Resolution",
            "FIGURES", "STAGES"]
 
-#: Stages after the computations, for progress reports.
-STAGES = ("sensitivity", "figures and CSV", "PNG pictures")
+#: Stages after the computations, for progress reports (the last only when drawing).
+STAGES = ("sensitivity", "CSV tables", "figures")
 
 
 @dataclass(frozen=True)
 class FigureFiles:
     spec: FigureSpec
-    html: Path
     csv: Path
-    png: Path | None
+    html: Path | None = None
+    png: Path | None = None
 
 
 @dataclass
@@ -70,38 +71,32 @@ def _resolution(resolution) -> Resolution:
     return RESOLUTIONS[resolution]
 
 
-def _write_figures(data: Data, out: Path, tick) -> list:
-    from .. import __version__
-
+def _write_tables(data: Data, out: Path, tick) -> list:
     files = []
     for i, spec in enumerate(FIGURES):
-        html = render.save_html(spec.draw(data), out / f"{spec.key}.html",
-                                f"Fig. {spec.number}: {spec.caption}")
         columns, settings = spec.table(data)
         header = {"figure": spec.number, "caption": spec.caption,
                   "resolution": data.resolution.name, **settings}
         csv = out / f"{spec.key}.csv"
         SweepResult(spec.key, {k: list(v) for k, v in columns.items()}, header, 0.0).to_csv(csv)
-        files.append(FigureFiles(spec, html, csv, None))
+        files.append(FigureFiles(spec, csv))
         tick(i + 1, len(FIGURES))
     return files
 
 
-def reproduce(out, resolution="full", workers: int = 1, png="auto",
-              progress=None) -> Reproduction:
-    """Regenerate every figure of the paper into the folder ``out`` and check its findings.
+def reproduce(out, resolution="full", workers: int = 1, progress=None,
+              draw=None) -> Reproduction:
+    """Compute every figure's data into the folder ``out`` and check the paper's findings.
 
-    ``resolution``: ``"full"`` (the figures as published; 1-5 min on 2 cores) or ``"coarse"``
-    (a quick check of the pipeline), or a ``Resolution``. ``workers``: processes for the
-    uniform-array sweeps. ``png``: ``"auto"`` (when a browser is available), ``True``
-    (fail without one) or ``False``. ``progress(stage, done, total)`` reports progress.
+    ``resolution``: ``"full"`` (the figures as published; 1-5 min on 2 cores) or
+    ``"coarse"`` (a quick check of the pipeline), or a ``Resolution``. ``workers``:
+    processes for the uniform-array sweeps. ``progress(stage, done, total)`` reports
+    progress. ``draw``: see the module's docstring; without it, no pictures.
     """
     from .. import __version__
 
     start = time.perf_counter()
     res = _resolution(resolution)
-    if png not in ("auto", True, False):
-        raise ValueError(f"png={png!r} must be 'auto', True or False")
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     report_ = progress or (lambda stage, done, total: None)
@@ -116,23 +111,19 @@ def reproduce(out, resolution="full", workers: int = 1, png="auto",
 
     variants = stage(STAGES[0], lambda t: sensitivity.variants(data.headline, res.tol,
                                                                res.mc_draws, t))
-    figures = stage(STAGES[1], lambda t: _write_figures(data, out, t))
-    problem = render.browser_problem() if png else "not requested"
-    if png is True and problem:
-        raise RuntimeError(f"PNG pictures were requested but cannot be made: {problem}")
-    if not problem:
-        pages = [(f.html, out / f"{f.spec.key}.png") for f in figures]
-        stage(STAGES[2], lambda t: render.html_to_png(pages, t))
-        figures = [FigureFiles(f.spec, f.html, f.csv, png_) for f, (_, png_) in
-                   zip(figures, pages)]
+    figures = stage(STAGES[1], lambda t: _write_tables(data, out, t))
+    note = "no drawing requested (python -m app.reproduce draws them)"
+    if draw is not None:
+        drawn, note = stage(STAGES[2], lambda t: draw(data, out, t))
+        figures = [FigureFiles(f.spec, f.csv, *drawn[f.spec.key]) for f in figures]
     rep = Reproduction(out, res, data, findings.all_checks(data), variants, figures,
-                       out / "report.md", out / "index.html", problem or "", __version__,
-                       0.0, extra)
+                       out / "report.md", out / "index.html", note, __version__, 0.0, extra)
     rep.seconds = time.perf_counter() - start
     report.write(rep, out)
     return rep
 
 
-def all_stages(resolution="full") -> list:
+def all_stages(resolution="full", drawing: bool = True) -> list:
     """Names of every stage ``reproduce`` reports progress on, in order."""
-    return [name for name, _ in stages(_resolution(resolution))] + list(STAGES)
+    return [name for name, _ in stages(_resolution(resolution))] + list(
+        STAGES if drawing else STAGES[:2])

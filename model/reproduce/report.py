@@ -63,12 +63,11 @@ def markdown(rep) -> str:
     lines += [""] + _md_table(SENSITIVITY_HEADER, sensitivity_rows(rep.variants)) + [""]
     lines += ["## Figures", ""]
     for f in rep.figures:
-        links = [f"[HTML]({f.html.name})", f"[CSV]({f.csv.name})"]
-        if f.png is not None:
-            links.append(f"[PNG]({f.png.name})")
+        links = [f"[{kind}]({path.name})" for kind, path in
+                 (("HTML", f.html), ("CSV", f.csv), ("PNG", f.png)) if path is not None]
         lines.append(f"- Fig. {f.spec.number}: {f.spec.caption} — {', '.join(links)}")
     if rep.png_note:
-        lines += ["", f"No PNGs: {rep.png_note}."]
+        lines += ["", f"Pictures missing: {rep.png_note}."]
     lines += ["", "## Time per stage", ""]
     lines += _md_table(["stage", "seconds"], [[k, f"{v:.1f}"] for k, v in
                                               {**rep.data.seconds, **rep.extra_seconds}.items()])
@@ -107,8 +106,9 @@ def index_html(rep) -> str:
     for f in rep.figures:
         img = f"<img src='{f.png.name}' alt='Fig. {f.spec.number}'>" if f.png else ""
         parts.append(f"<figure>{img}<figcaption>Fig. {f.spec.number}: "
-                     f"{html.escape(f.spec.caption)} — <a href='{f.html.name}'>interactive</a>, "
-                     f"<a href='{f.csv.name}'>data (CSV)</a></figcaption></figure>")
+                     f"{html.escape(f.spec.caption)} — "
+                     + (f"<a href='{f.html.name}'>interactive</a>, " if f.html else "")
+                     + f"<a href='{f.csv.name}'>data (CSV)</a></figcaption></figure>")
     return "\n".join(parts) + "\n"
 
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 from bokeh.models import FactorRange, Label, Range1d, Span
 
-from ..friction import mu, mu0
+from model.friction import mu, mu0
 
 from .common import BLACK, BLUE, GREEN, GREY, PURPLE, VERMILION, new_figure, source
 

@@ -14,7 +14,7 @@ import numpy as np
 from bokeh.models import ColorBar, LinearColorMapper, Range1d, Span
 from bokeh.palettes import Cividis256, Viridis256
 
-from ..params import REGIMES
+from model.params import REGIMES
 
 from .common import BLACK, GREY, REGIME_COLORS, VERMILION, new_figure, source
 

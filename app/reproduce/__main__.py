@@ -1,0 +1,36 @@
+"""``python -m app.reproduce --out DIR [--png | --no-png]``: ``python -m model reproduce``
+with the figures drawn as HTML and PNG (see ``app.reproduce``). Exit codes as there."""
+import sys
+from functools import partial
+
+from model.cli import UsageError
+from model.cli._common import CommandParser
+from model.cli.reproduce import add_arguments, run
+
+from . import draw
+
+PROG = "python -m app.reproduce"
+
+
+def main(argv=None) -> int:
+    parser = CommandParser(prog=PROG, description="Regenerate every figure of the paper "
+                           "(HTML, PNG, CSV) and check its findings (report.md, index.html).")
+    add_arguments(parser)
+    png = parser.add_mutually_exclusive_group()
+    png.add_argument("--png", dest="png", action="store_const", const=True, default="auto",
+                     help="require PNG pictures (fail without Chromium and Playwright)")
+    png.add_argument("--no-png", dest="png", action="store_const", const=False,
+                     help="skip the PNG pictures")
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as stop:
+        return stop.code if isinstance(stop.code, int) else 2
+    try:
+        return run(args, draw=partial(draw, png=args.png))
+    except UsageError as error:
+        print(f"{PROG}: error: {error}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())
