@@ -26,11 +26,15 @@ RUN groupadd --system --gid 10001 micropillar \
     && mkdir -p /var/cache/micropillar/numba /var/cache/micropillar/results \
     && chown -R micropillar:micropillar /var/cache/micropillar
 
-# The package and its dependencies, from the project's own pyproject.toml.
+# The package and its dependencies, from the project's own pyproject.toml, each at the
+# exact version in constraints.txt: the versions the test suite ran against (regenerate
+# the file with `python .ci/constraints.py` in the tested environment).
+# Both packages are installed: the app's modules import ``app`` by name (app/__init__.py).
 WORKDIR /tmp/build
-COPY pyproject.toml README.md ./
+COPY pyproject.toml README.md constraints.txt ./
 COPY model ./model
-RUN pip install --no-cache-dir . \
+COPY app ./app
+RUN pip install --no-cache-dir --constraint constraints.txt . \
     && rm -rf /tmp/build
 
 # Only the app folder sits in the working directory, so every process (including the

@@ -1,9 +1,17 @@
 """Micropillar friction explorer: the Panel dashboard served by ``panel serve app``.
 
-Modules: ``state`` (the controls, a ``param.Parameterized``), ``urlstate`` (the state in
-the URL), ``compute``, ``worker`` and ``jobs`` (model calls in worker processes, caches,
-newest-wins background jobs), ``figures`` (one function per figure), ``reproduce``
-(the paper's figures drawn), ``healthcheck`` (the container health check), ``views``
-(``pn.viewable.Viewer`` classes), ``export`` (CSV) and ``texts``; ``main.py`` builds the
-page and ``app_hooks.py`` warms the kernel and the workers when the server starts.
+Data flows one way: the controls (``state.ExplorerState``, mirrored in the URL by
+``urlstate``) -> one ``results.SessionResults`` per session, which owns every computation
+(each result a ``slot.Slot``) and hands it to the server's worker processes (``jobs``: the work pool,
+``lanes``: its workers and fair queues, ``result_cache``: shared results; ``worker``: the
+functions they run; ``pages``: the page gate; ``patches``: a session's update sent as one
+message) -> the views (``views``), renderers that
+declare which results they draw (``param.depends``) with the figure functions of
+``figures``. Also: ``reproduce`` (the paper's figures drawn), ``healthcheck`` (the
+container health check), ``export`` (CSV) and ``texts``; ``main.py`` builds the page and
+``app_hooks.py`` warms the kernel and the workers when the server starts.
+
+``app`` is an ordinary installed package (``pip install .`` or ``pip install -e .``
+installs it beside ``model``): ``panel serve app`` runs ``app/main.py``, which imports
+``app`` by name, so the server, its worker processes and the tests share one copy.
 """

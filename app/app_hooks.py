@@ -1,7 +1,55 @@
-"""Server hooks: load the compiled kernel and start the worker processes when the
-server starts, so the first page is as quick as the next."""
-from .jobs import warm_up
+"""Server hooks (``panel serve app`` runs ``on_server_loaded`` once, before any request).
+
+* The compiled kernel is loaded and the worker processes started, so the first page is as
+  quick as the next.
+* Panel's reader of the page address is guarded (``app.urlstate.panel_query``): a value it
+  cannot convert, such as 4301 digits, would otherwise stop the page from syncing.
+* Every response carries ``SECURITY_HEADERS``: no other site may frame the dashboard
+  (clickjacking), and browsers take each file as the type the server declares.
+"""
+from app.jobs import warm_up
+from app.urlstate import panel_query
+
+#: Headers added to every HTTP response of the server (pages, scripts, websocket upgrades,
+#: the liveness endpoint, errors).
+SECURITY_HEADERS = {
+    "X-Frame-Options": "SAMEORIGIN",
+    "Content-Security-Policy": "frame-ancestors 'self'",
+    "X-Content-Type-Options": "nosniff",
+    "Referrer-Policy": "same-origin",
+}
+
+
+def guard_query_parsing() -> None:
+    """Replace Panel's query reader by ``panel_query`` of it (once per process)."""
+    from panel.io import location
+
+    if not hasattr(location.parse_query, "__wrapped__"):
+        location.parse_query = panel_query(location.parse_query)
+
+
+def add_security_headers() -> None:
+    """Send ``SECURITY_HEADERS`` with every response of this process's Tornado server.
+
+    Neither Bokeh nor Panel has an option for response headers, so they are set where
+    Tornado resets the headers of each response (``RequestHandler.clear``: on creation
+    and before an error page), which every handler, Bokeh's and Panel's alike, inherits."""
+    from tornado.web import RequestHandler
+
+    if getattr(RequestHandler.clear, "_security_headers", False):
+        return
+    reset = RequestHandler.clear
+
+    def clear(self):
+        reset(self)
+        for name, value in SECURITY_HEADERS.items():
+            self.set_header(name, value)
+
+    clear._security_headers = True
+    RequestHandler.clear = clear
 
 
 def on_server_loaded(server_context):
+    guard_query_parsing()
+    add_security_headers()
     warm_up()

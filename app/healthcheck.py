@@ -31,7 +31,10 @@ def check(base_url: str = DEFAULT_URL, timeout: float = 25.0) -> str | None:
                 return f"liveness answered {r.status}"
     except (urllib.error.URLError, OSError) as error:
         return f"liveness endpoint unreachable: {error}"
-    import panel  # noqa: F401 -- registers Panel's models, so the client can read the page
+    # The page's model types, registered so the client can read the page: Panel's, and
+    # the app's own (a Bokeh document naming a type the client lacks cannot be opened).
+    import panel  # noqa: F401
+    import app.views  # noqa: F401  (the player's frame, the page's behaviour component)
     from bokeh.client import pull_session
 
     try:

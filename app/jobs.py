@@ -1,293 +1,256 @@
-"""Background work for the dashboard: shared executors and a newest-wins job runner.
+"""Work behind the page: worker processes shared by every session, served fairly.
 
-All model work runs in worker processes -- the single support (a few ms, but seconds in
-hard cases), orientation sweeps (Fig. 11), uniform arrays (Figs. 5, 6) -- so the compiled
-kernel (which holds the GIL) never stalls the server's event loop and the sliders stay
-responsive. Executors and result caches are per server process, shared by
-all sessions; runners are per session.
+All model work runs in worker processes, so the compiled kernel (which holds the GIL)
+never stalls the server's event loop. Two *lanes* of workers serve it:
 
-``LatestOnly`` gives the issue's "a newer request supersedes an older one": at most one
-job of a runner is in flight; while it runs, only the newest request waits; results of
-superseded requests are dropped. When its session is destroyed (the browser went away),
-a runner drops its waiting job, cancels its job if still queued, ignores a late result
-and lets go of the session's document.
+* ``interactive`` -- the single support behind the Support tab (milliseconds; what a
+  slider move waits for);
+* ``background`` -- orientation sweeps, uniform arrays, load curves (tens of ms to
+  seconds), its processes at a lower CPU priority so they never slow the interactive lane
+  or the server.
+
+Each lane keeps one queue per session, grouped by client (the browser's address), and
+takes jobs in turn: clients in turn, and each client's sessions in turn. So one session's
+pile of work delays another session's next job by at most one job, and one client opening
+many pages cannot starve the others. A lane's queue is bounded (``MAX_QUEUED``): beyond
+it a request fails at once with ``ServerBusy`` ("busy, try again"). Every job has a time
+budget (``budget_s``): a worker still busy with a job past its budget is stopped and
+replaced, the job fails with ``OverBudget`` (remembered for a while), and other jobs
+caught in the stop are run again. Finished results are shared by every session
+(``app.result_cache``) and identical requests in flight are computed once.
+
+Per server process: every copy of the app Bokeh builds (Panel's liveness endpoint makes
+one) hands its work to the same workers, since this module is imported once.
 """
 from __future__ import annotations
 
-import asyncio
 import concurrent.futures as cf
+import itertools
 import logging
-import multiprocessing
-import sys
+import os
 import threading
-from collections import OrderedDict
-from pathlib import Path
+import time
 
-import panel as pn
+from .lanes import DEFAULT_BUDGET_S, LANES, Job, Lane, LaneRunner
+from .result_cache import CACHE_SIZE, ResultCache
 
-from model import mu0
+__all__ = ["WorkPool", "Lane", "LANES", "ServerBusy", "OverBudget", "work_pool", "warm_up",
+           "load_scale"]
 
 log = logging.getLogger(__name__)
 
-#: Process pools, one worker each, so slow work of one kind never holds up another:
-#: "support" the single support (Support tab), "sweep" the polar plots, "array" the
-#: uniform arrays.
-POOL_NAMES = ("support", "sweep", "array")
+
+#: At most this many jobs wait in one lane (all sessions together).
+MAX_QUEUED = 96
+#: How long a request that ran over its budget is refused at once.
+OVER_BUDGET_MEMORY_S = 120.0
+#: How often the watchdog looks at the running jobs.
+WATCH_INTERVAL_S = 0.1
+class ServerBusy(RuntimeError):
+    """The lane's queue is full: the request was not accepted."""
 
 
-#: ``app/worker.py`` is loaded under this name in the server and in every worker, so its
-#: functions and result classes pickle by reference in both directions (the server's
-#: own package name, ``bokeh_app_<id>``, cannot be imported by a worker).
-WORKER_MODULE = "micropillar_dashboard_worker"
-_BOOT = f"""
-import importlib.util, sys
-if {WORKER_MODULE!r} not in sys.modules:
-    spec = importlib.util.spec_from_file_location(
-        {WORKER_MODULE!r}, {str(Path(__file__).with_name("worker.py"))!r})
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-"""
+class OverBudget(RuntimeError):
+    """A job took longer than its time budget and was stopped."""
 
 
-def worker_module():
-    """``app/worker.py``, loaded once under ``WORKER_MODULE``."""
-    if WORKER_MODULE not in sys.modules:
-        exec(_BOOT, {})
-    return sys.modules[WORKER_MODULE]
+class WorkPool:
+    """The server process's lanes of workers, queues and shared results."""
+
+    def __init__(self, lanes=None, max_queued: int = MAX_QUEUED, cache_size: int = CACHE_SIZE):
+        self._lock = threading.RLock()
+        self.lanes = {name: LaneRunner(lane, self) for name, lane in (lanes or LANES).items()}
+        self.max_queued = max_queued
+        self.cache = ResultCache(cache_size)
+        self._inflight: dict = {}
+        self._over_budget: dict = {}  # key -> (monotonic time, message)
+        self._ids = itertools.count()
+        self._watchdog = None
+
+    # ------------------------------------------------------------------ public
+    def session_id(self) -> int:
+        """A fresh identifier for a session's queue."""
+        return next(self._ids)
+
+    def submit(self, lane: str, key, fn, *args, session=None, client=None,
+               budget_s: float = DEFAULT_BUDGET_S, **kwargs) -> cf.Future:
+        """A future of ``fn(*args, **kwargs)`` computed in ``lane``'s workers.
+
+        Already done on a cache hit; shared with an identical request (same ``key``) still
+        in flight; else queued behind ``session``'s earlier jobs and served in turn with
+        the other clients and sessions. Raises nothing: a full queue sets ``ServerBusy``
+        on the future, a job past ``budget_s`` seconds ``OverBudget``. Cancelling the
+        future before its job started means the job never runs.
+        """
+        future: cf.Future = cf.Future()
+        hit = self.cache.get(key) if key is not None else None
+        if hit is not None:
+            future.set_result(hit)
+            return future
+        with self._lock:
+            refused = self._refused(key)
+            if refused:
+                future.set_exception(OverBudget(refused))
+                return future
+            if key is not None and key in self._inflight:
+                self._inflight[key].waiters.append(future)
+                return future
+            runner = self.lanes[lane]
+            if runner.queued() >= self.max_queued:
+                future.set_exception(ServerBusy(
+                    f"The server is busy ({runner.queued()} computations are waiting); "
+                    "try again in a moment."))
+                return future
+            job = Job(key, fn, args, kwargs, future, [], float(budget_s), client, session)
+            if key is not None:
+                self._inflight[key] = job
+            runner.add(job)
+            self._dispatch(runner)
+            self._ensure_watchdog()
+        return future
+
+    def warm_up(self) -> None:
+        """Start every lane's workers (each loads the compiled kernel)."""
+        for runner in self.lanes.values():
+            with self._lock:
+                runner._executor()
+
+    def stats(self) -> dict:
+        with self._lock:
+            return {name: {"queued": r.queued(), "running": len(r.running),
+                           "started": r.started,
+                           "workers": r.lane.workers} for name, r in self.lanes.items()} | {
+                "cached": len(self.cache), "cached_bytes": self.cache.nbytes,
+                "inflight": len(self._inflight)}
+
+    def executor(self, lane: str):
+        """The process pool of ``lane`` (started if needed)."""
+        with self._lock:
+            return self.lanes[lane]._executor()
+
+    def shutdown(self) -> None:
+        for runner in self.lanes.values():
+            if runner.executor is not None:
+                runner.executor.shutdown(wait=False, cancel_futures=True)
+                runner.executor = None
+
+    # ------------------------------------------------------------------ internals
+    def _forget(self, job: Job) -> None:
+        if job.key is not None and self._inflight.get(job.key) is job:
+            del self._inflight[job.key]
+
+    def _refused(self, key) -> str:
+        """The message of a recent over-budget run of ``key``, if any."""
+        if key is None or key not in self._over_budget:
+            return ""
+        when, message = self._over_budget[key]
+        if time.monotonic() - when > OVER_BUDGET_MEMORY_S:
+            del self._over_budget[key]
+            return ""
+        return message
+
+    def _dispatch(self, runner: LaneRunner) -> None:
+        """Hand queued jobs to free workers (called with the lock held)."""
+        while len(runner.running) < runner.lane.workers:
+            job = runner.next_job()
+            if job is None:
+                return
+            try:
+                inner = runner._executor().submit(job.fn, *job.args, **job.kwargs)
+            except (cf.process.BrokenProcessPool, RuntimeError):
+                runner.executor = None  # a dead pool: start anew
+                inner = runner._executor().submit(job.fn, *job.args, **job.kwargs)
+            job.started = time.monotonic()
+            runner.running[inner] = job
+            runner.started += 1
+            inner.add_done_callback(lambda f, job=job, runner=runner: self._done(runner, job, f))
+
+    def _ensure_watchdog(self) -> None:
+        if self._watchdog is None or not self._watchdog.is_alive():
+            self._watchdog = threading.Thread(target=self._watch, name="work-pool-watchdog",
+                                              daemon=True)
+            self._watchdog.start()
+
+    def _watch(self) -> None:
+        """Stop the workers of a lane whose job ran past its budget.
+
+        A budget is seconds of a worker's own time: on a machine busier than its cores
+        (load average above the core count) the wall-clock allowance grows in proportion,
+        so a machine shared with other work does not stop ordinary jobs.
+        """
+        while True:
+            time.sleep(WATCH_INTERVAL_S)
+            now = time.monotonic()
+            scale = load_scale()
+            with self._lock:
+                for runner in self.lanes.values():
+                    late = [j for j in runner.running.values() if not j.over_budget
+                            and runner.run_time(j, now) > j.budget_s * scale]
+                    if not late:
+                        continue
+                    for job in runner.running.values():
+                        job.collateral = job not in late
+                    for job in late:
+                        job.over_budget = True
+                        log.warning("a %s job ran past its %.3g s budget; stopping its worker",
+                                    runner.lane.name, job.budget_s)
+                    runner.stop_workers()
+
+    def _done(self, runner: LaneRunner, job: Job, inner: cf.Future) -> None:
+        error = inner.exception() if not inner.cancelled() else cf.CancelledError()
+        with self._lock:
+            runner.running.pop(inner, None)
+            if job.over_budget:
+                error = OverBudget(
+                    f"this computation needs more than its {job.budget_s:g} s of the "
+                    "server's time and was stopped; try a looser solver tolerance or other "
+                    "parameters")
+                if job.key is not None:
+                    self._over_budget[job.key] = (time.monotonic(), str(error))
+            elif job.collateral and error is not None and job.live():
+                # Caught in the stop of another job's worker: run it again, first in line.
+                job.collateral = False
+                runner.add(job, front=True)
+                self._dispatch(runner)
+                return
+            self._forget(job)
+            self._dispatch(runner)
+        if error is None:
+            result = inner.result()
+            if job.key is not None:
+                self.cache.put(job.key, result)
+        for future in (job.future, *job.waiters):
+            if future.cancelled() or not future.set_running_or_notify_cancel():
+                continue
+            if error is None:
+                future.set_result(result)
+            else:
+                future.set_exception(error)
 
 
-def _registry() -> tuple[dict, threading.Lock]:
-    """The server process's pools and their lock, kept on the worker module (loaded once
-    per process under a fixed name): Bokeh may load this package more than once in a
-    server (Panel's liveness endpoint builds the app in a copy of its own), and a copy
-    must not start workers of its own."""
-    names = vars(worker_module())
-    # dict.setdefault is atomic: two copies racing here still share one registry.
-    return names.setdefault("_SERVER_POOLS", {}), names.setdefault("_SERVER_POOL_LOCK",
-                                                                    threading.Lock())
+def load_scale() -> float:
+    """How much slower than its cores the machine runs now: load average / cores, >= 1."""
+    try:
+        return max(1.0, os.getloadavg()[0] / (os.cpu_count() or 1))
+    except OSError:  # no load average on this system
+        return 1.0
 
 
-def process_pool(name: str) -> cf.Executor:
-    """The worker process ``name`` (started on first use, restarted if it died); it loads
-    ``app/worker.py`` and the compiled kernel when it starts."""
-    pools, lock = _registry()
-    with lock:
-        pool = pools.get(name)
-        if pool is None or getattr(pool, "_broken", False):
-            if pool is not None:
-                log.warning("dashboard worker %r stopped (%s); starting a new one", name,
-                            pool._broken)
-            pool = cf.ProcessPoolExecutor(
-                max_workers=1, mp_context=multiprocessing.get_context("spawn"),
-                initializer=exec, initargs=(_BOOT + f"sys.modules[{WORKER_MODULE!r}].warm()\n",))
-            pools[name] = pool
-        return pool
+_POOL: WorkPool | None = None
+_POOL_LOCK = threading.Lock()
+
+
+def work_pool() -> WorkPool:
+    """The server process's ``WorkPool`` (made on first use)."""
+    global _POOL
+    with _POOL_LOCK:
+        if _POOL is None:
+            _POOL = WorkPool()
+        return _POOL
 
 
 def warm_up() -> None:
-    """Load the compiled kernel here and start the worker processes (each loads it too)."""
-    worker_module().warm()
-    for name in POOL_NAMES:
-        process_pool(name).submit(mu0)  # spawns the worker, which runs its initializer
-
-
-class ResultCache:
-    """A bounded LRU of finished results, shared by all sessions of the server process."""
-
-    def __init__(self, maxsize: int = 128):
-        self._data: OrderedDict = OrderedDict()
-        self._lock = threading.Lock()
-        self.maxsize = maxsize
-
-    def get(self, key):
-        with self._lock:
-            if key in self._data:
-                self._data.move_to_end(key)
-                return self._data[key]
-        return None
-
-    def put(self, key, value) -> None:
-        with self._lock:
-            self._data[key] = value
-            self._data.move_to_end(key)
-            while len(self._data) > self.maxsize:
-                self._data.popitem(last=False)
-
-
-def cached_submit(cache: ResultCache, key, executor: cf.Executor, fn, *args, **kwargs):
-    """A future of ``fn(*args, **kwargs)``: already done on a cache hit, else submitted."""
-    hit = cache.get(key)
-    if hit is not None:
-        done = cf.Future()
-        done.set_result(hit)
-        return done
-    try:
-        future = executor.submit(fn, *args, **kwargs)
-    except (cf.process.BrokenProcessPool, RuntimeError):  # a dead worker: start anew
-        pools, lock = _registry()
-        for name, pool in list(pools.items()):
-            if pool is executor:
-                with lock:
-                    pools.pop(name, None)
-                executor = process_pool(name)
-        future = executor.submit(fn, *args, **kwargs)
-    future.add_done_callback(
-        lambda f: f.cancelled() or f.exception() is not None or cache.put(key, f.result()))
-    return future
-
-
-def _session_doc():
-    doc = pn.state.curdoc
-    return doc if doc is not None and doc.session_context is not None else None
-
-
-class LatestOnly:
-    """Runs the newest submitted job; older waiting jobs are dropped, stale results ignored.
-
-    ``apply(result, error)`` receives the outcome of the newest job (``error`` is the
-    exception or None) with the document locked, so it may update models directly.
-    ``busy(flag)`` is told when work starts and when the runner falls idle. Without a
-    server session (tests, scripts) jobs run immediately and synchronously. Once the
-    session is destroyed (``close``), nothing is started or applied any more.
-    """
-
-    def __init__(self, apply, busy=None):
-        self._apply = apply
-        self._busy = busy
-        self._pending = None
-        self._running = False
-        self._doc = None
-        self._future = None  # of the job in flight
-        self.closed = False
-        self.generation = 0
-
-    def submit(self, start) -> None:
-        """Queue ``start``: a callable returning a ``concurrent.futures.Future``."""
-        if self.closed:
-            return
-        self.generation += 1
-        self._pending = start
-        doc = _session_doc()
-        if doc is None:
-            self._run_now()
-            return
-        self._bind(doc)
-        if not self._running:
-            self._running = True
-            self._call(self._busy, True)
-            first = self._start()  # at once: the work overlaps the rest of this event
-
-            async def drain():
-                await self._drain(first)
-            pn.state.execute(drain)
-
-    def submit_later(self, start, delay_ms: int) -> None:
-        """``submit(start)`` once nothing newer was asked for during ``delay_ms`` (so
-        background work waits until a slider stops moving)."""
-        if self.closed:
-            return
-        self.generation += 1
-        doc = _session_doc()
-        if doc is None:
-            self.submit(start)
-            return
-        self._bind(doc)
-        generation = self.generation
-
-        def later():
-            if generation == self.generation:
-                self.submit(start)
-        doc.add_timeout_callback(later, delay_ms)
-
-    def cancel(self) -> None:
-        """Forget the waiting job and ignore the result of the running one."""
-        self.generation += 1
-        self._pending = None
-
-    def close(self, *_session_context) -> None:
-        """The session ended: forget the waiting job, cancel the job in flight if it has
-        not started yet (a running one cannot be stopped; its result is ignored), start
-        nothing more and drop the document."""
-        self.closed = True
-        self.cancel()
-        if self._future is not None:
-            self._future.cancel()
-        self._doc = None
-
-    def _bind(self, doc) -> None:
-        """Work for ``doc``'s session, and stop when that session is destroyed."""
-        if doc is not self._doc:
-            self._doc = doc
-            doc.on_session_destroyed(self.close)
-
-    def _run_now(self) -> None:
-        start, self._pending = self._pending, None
-        try:
-            result, error = start().result(), None
-        except Exception as exc:  # shown by ``apply``: the page stays usable
-            result, error = None, exc
-        self._apply(result, error)
-
-    def _start(self):
-        """Start the waiting job: (its generation, its future or the exception it raised)."""
-        start, self._pending = self._pending, None
-        try:
-            self._future = start()
-            return self.generation, self._future
-        except Exception as exc:
-            return self.generation, exc
-
-    async def _drain(self, job) -> None:
-        try:
-            while job is not None:
-                generation, future = job
-                try:
-                    if isinstance(future, Exception):
-                        raise future
-                    result, error = await asyncio.wrap_future(future), None
-                except asyncio.CancelledError:
-                    if not future.cancelled():  # this task itself is cancelled
-                        raise
-                    result, error = None, None  # cancelled by ``close``: nothing to show
-                except Exception as exc:
-                    result, error = None, exc
-                if generation == self.generation:
-                    self._call(self._apply, result, error)
-                job = self._start() if self._pending is not None else None
-        finally:
-            self._running = False
-            self._future = None
-            self._call(self._busy, False)
-
-    def _call(self, fn, *args) -> None:
-        """Run ``fn(*args)`` on the session's document with its lock held."""
-        if fn is None or self.closed:
-            return
-        if self._doc is None:
-            fn(*args)
-            return
-        doc = self._doc
-
-        def locked():
-            # Bokeh's own hold: the changes leave through Bokeh's locked write path when
-            # it is released. Left to pn.io.hold alone, Panel 1.9 writes them itself and,
-            # under load, can leave a session's last update unsent (its _dispatch_msgs
-            # clears the write block of messages queued meanwhile).
-            if self.closed:
-                return
-            held = doc.callbacks.hold_value
-            if not held:
-                doc.hold("combine")
-            try:
-                fn(*args)
-            except Exception:
-                log.exception("dashboard update failed")
-            finally:
-                if not held:
-                    doc.unhold()
-        try:
-            doc.add_next_tick_callback(locked)
-        except Exception:  # the session has closed meanwhile
-            log.debug("session gone; update dropped")
-
+    """Load the compiled kernel here and start every worker (each loads it too)."""
+    from .worker import warm
+    warm()
+    work_pool().warm_up()

@@ -1,11 +1,49 @@
 """Micropillar friction explorer: ``panel serve app`` serves this page at ``/app``.
 
-Builds the page of one browser session from the URL's state; everything else lives in
-the package (see ``app/__init__.py``).
+Builds the page of one browser session from the URL's state. The code lives in the
+installed package ``app`` (imported by that name, as the worker processes and the tests
+import it), so this script only makes the page.
+
+A client (address) with several pages built that no browser has opened yet gets a short
+"busy" page instead (``app.pages.PageGate``): a page build holds the server's event loop,
+so a burst of page requests must not stall the other sessions and the health check.
 """
 import panel as pn
 
-from .views import Dashboard
+from app.app_hooks import guard_query_parsing
+from app.pages import page_gate, schedule_release
+from app.results import client_address
+from app.views import Dashboard
 
+guard_query_parsing()  # already done by the server hook; kept for `panel serve app/main.py`
+TITLE = "Micropillar friction explorer"
 pn.extension("mathjax", notifications=False)
-Dashboard.from_session().servable(title="Micropillar friction explorer")
+
+
+def busy_page():
+    reload = pn.widgets.Button(name="Reload", button_type="primary", width=120)
+    reload.js_on_click(code="window.location.reload()")
+    return pn.Column(pn.pane.Markdown(
+        "### The server is busy\n\nIt is still building several pages for your address "
+        "that have not been opened yet. Please reload this page in a few seconds."),
+        reload, css_classes=["busy-page"])
+
+
+def serve() -> None:
+    """The dashboard, or the busy page. (A function: the callbacks it leaves behind must
+    not reach for this script's globals, which are gone once the page is built.)"""
+    doc, gate, client = pn.state.curdoc, page_gate(), client_address()
+    page_id, release = id(doc), schedule_release
+    if doc is not None and not gate.admit(client, page_id):
+        busy_page().servable(title=f"{TITLE} (busy)")
+        return
+    if doc is not None:
+        pn.state.onload(lambda: gate.opened(client, page_id))
+        doc.on_session_destroyed(lambda _context: (gate.opened(client, page_id),
+                                                   release()))
+    Dashboard.from_session().servable(title=TITLE)
+    if doc is not None:
+        gate.built(client, page_id)
+
+
+serve()

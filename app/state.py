@@ -4,8 +4,8 @@
 (Eq. 5), the rest orientation theta0 (in degrees, as on the slider), the solver
 tolerance, the load factor beta = N_c0/N_c (self-consistent or fixed), which uniform
 average is shown (paper, Eq. 10, or duration-weighted), the regime-map quantity
-(Fig. 5a or 5b), the visible tab and projector mode. Views read it and never own it;
-the URL mirrors it (``app.urlstate``).
+(Fig. 5a or 5b), the visible tab and projector mode, and the pinned state "A" of a
+comparison. Views read it and never own it; the URL mirrors it (``app.urlstate``).
 """
 from __future__ import annotations
 
@@ -14,9 +14,12 @@ import math
 import param
 
 from model import REGIMES, Params
+from model.controls import OBJECTIVES
 
-from .urlstate import (AVERAGES, DEFAULTS, F_N_BOUNDS, K_BOUNDS, MAP_QUANTITIES, RTOLS, TABS,
-                       parse, serialize, to_search)
+from .urlstate import (AVERAGES, BETA_BOUNDS, BOUND_BOUNDS, DEFAULTS, DESIGN_INPUTS,
+                       DIST_FAMILIES, F_N_BOUNDS, K_BOUNDS, KAPPA_BOUNDS, MAP_QUANTITIES,
+                       MIX_BOUNDS, ORIENTATIONS, PINNED_KEYS, PSI_BOUNDS, RTOLS, TABS, parse,
+                       serialize, to_search)
 
 #: Preset buttons: regime -> (k_r, k_theta) (Fig. 6 caption).
 PRESETS = {name: (p.k_r, p.k_theta) for name, p in REGIMES.items()}
@@ -26,12 +29,22 @@ K_MID = math.sqrt(K_BOUNDS[0] * K_BOUNDS[1])
 
 #: Parameters that change a single support (and so the Support tab).
 SUPPORT_KEYS = ("k_r", "k_theta", "F_N", "theta0", "rtol", "beta_mode", "beta")
+assert set(PINNED_KEYS) == set(SUPPORT_KEYS), "a pinned state keeps what makes a support"
 #: Parameters that change the fixed-orientation sweeps (Fig. 11): not theta0.
 SWEEP_KEYS = ("k_r", "k_theta", "F_N", "rtol", "beta_mode", "beta")
 #: Parameters that change the uniform arrays (Figs. 5, 6).
 ARRAY_KEYS = ("k_r", "k_theta", "F_N", "beta_mode", "beta")
 #: Parameters carried by the URL.
 URL_KEYS = tuple(DEFAULTS)
+#: Parameters that change the Design tab's pillar array (its dimensionless point).
+DESIGN_KEYS = tuple(DESIGN_INPUTS)
+#: Parameters of the Design tab's orientation distribution.
+DIST_KEYS = ("dist_family", "dist_deg", "dist_kappa", "dist_psi", "mix_weight", "dist2_family",
+             "dist2_deg", "dist2_kappa")
+#: Parameters of what "Optimise" seeks on the Design tab.
+OPTIMUM_KEYS = ("opt_objective", "opt_bound")
+#: Parameters of how the page is shown, not of the physics: Reset keeps them.
+VIEW_KEYS = ("tab", "projector", "pinned")
 
 
 def classify(k_r: float, k_theta: float) -> str:
@@ -44,6 +57,32 @@ def classify(k_r: float, k_theta: float) -> str:
 def clamp(value: float, bounds: tuple[float, float]) -> float:
     """``value`` moved into the closed interval ``bounds`` (rounding off log sliders)."""
     return min(max(float(value), bounds[0]), bounds[1])
+
+
+def _component(family: str, deg: float, kappa: float) -> dict:
+    """One component of the editor as ``model.distributions.from_dict`` reads it."""
+    if family in ("fixed", "pair"):
+        return {"family": family, "theta0_deg": float(deg)}
+    if family == "vonmises":
+        return {"family": family, "mean_deg": float(deg), "kappa": float(kappa)}
+    return {"family": "uniform"}
+
+
+def _editor_values(d: dict, which: str) -> dict:
+    """State values of component ``which`` ("" or "2") from a ``to_dict`` form."""
+    values = {f"dist{which}_family": d["family"]}
+    angle = d.get("theta0_deg", d.get("mean_deg"))
+    if angle is not None:
+        values[f"dist{which}_deg"] = float(angle) % 360.0
+    if "kappa" in d:
+        values[f"dist{which}_kappa"] = clamp(d["kappa"], KAPPA_BOUNDS)
+    return values
+
+
+def _design_parameters() -> dict:
+    return {name: param.String(DEFAULTS[name], doc=f"Design tab: the {what}, a quantity with "
+                               f"its unit such as {DEFAULTS[name] or '0.36 GPa'!r}")
+            for name, (_, _, _, what) in DESIGN_INPUTS.items()}
 
 
 class ExplorerState(param.Parameterized):
@@ -60,7 +99,7 @@ class ExplorerState(param.Parameterized):
                           doc="relative tolerance of the single-support integration")
     beta_mode = param.Selector(default=DEFAULTS["beta_mode"], objects=["self", "fixed"],
                                doc="load factor beta = N_c0/N_c: self-consistent or fixed")
-    beta = param.Number(DEFAULTS["beta"], bounds=(0.0, 1.0), inclusive_bounds=(False, True),
+    beta = param.Number(DEFAULTS["beta"], bounds=BETA_BOUNDS, inclusive_bounds=(True, True),
                         doc="the fixed load factor (used when beta_mode is 'fixed')")
     average = param.Selector(default=DEFAULTS["average"], objects=list(AVERAGES),
                              doc="uniform-array average: paper (Eq. 10) or duration-weighted")
@@ -69,7 +108,76 @@ class ExplorerState(param.Parameterized):
     tab = param.Selector(default=DEFAULTS["tab"], objects=list(TABS), doc="the visible tab")
     projector = param.Boolean(DEFAULTS["projector"],
                               doc="large fonts, thick lines, high contrast for projection")
+    orientation = param.Selector(default=DEFAULTS["orientation"], objects=list(ORIENTATIONS),
+                                 doc="orientations of the array under the slab: theta0 "
+                                     "uniform, or every support at theta0")
+    play = param.Boolean(DEFAULTS["play"], doc="start the animations when the page opens")
     notice = param.String("", doc="a message for the page (unusable URL values)")
+    pinned = param.Dict(None, allow_None=True, doc=(
+        "the pinned state A of a comparison ({name: value} of PINNED_KEYS), or None"))
+
+    # ------------------------------------------------------------------ Design tab
+    # A pillar array in physical units (text with units, parsed by model.units): set below
+    # from ``DESIGN_INPUTS``, one String parameter per input.
+    dist_family = param.Selector(default=DEFAULTS["dist_family"], objects=list(DIST_FAMILIES),
+                                 doc="Design tab: the family of the orientation distribution")
+    dist_deg = param.Number(DEFAULTS["dist_deg"], bounds=(0.0, 360.0),
+                            inclusive_bounds=(True, False),
+                            doc="Design tab: theta0 (fixed, pair) or the von Mises mean, degrees")
+    dist_kappa = param.Number(DEFAULTS["dist_kappa"], bounds=KAPPA_BOUNDS,
+                              doc="Design tab: the von Mises concentration kappa (0: uniform)")
+    dist_psi = param.Number(DEFAULTS["dist_psi"], bounds=PSI_BOUNDS,
+                            doc="Design tab: the sliding direction psi to the array, degrees")
+    mix_weight = param.Number(DEFAULTS["mix_weight"], bounds=MIX_BOUNDS,
+                              doc="Design tab: weight of a second component (0: no mixture)")
+    dist2_family = param.Selector(default=DEFAULTS["dist2_family"], objects=list(DIST_FAMILIES),
+                                  doc="Design tab: the family of the second component")
+    dist2_deg = param.Number(DEFAULTS["dist2_deg"], bounds=(0.0, 360.0),
+                             inclusive_bounds=(True, False),
+                             doc="Design tab: the second component's theta0 or mean, degrees")
+    dist2_kappa = param.Number(DEFAULTS["dist2_kappa"], bounds=KAPPA_BOUNDS,
+                               doc="Design tab: the second component's concentration kappa")
+    opt_objective = param.Selector(default=DEFAULTS["opt_objective"], objects=list(OBJECTIVES),
+                                   doc="Design tab: Optimise seeks the least F_T,x (min-FTx) "
+                                       "or the largest |F_T,y| (max-FTy)")
+    opt_bound = param.Number(DEFAULTS["opt_bound"], bounds=BOUND_BOUNDS, allow_None=True,
+                             doc="Design tab: the bound on |F_T,y|/(mu0 F_N) (min-FTx) or "
+                                 "F_T,x/(mu0 F_N) (max-FTy); None: no bound")
+
+    @property
+    def design_inputs(self) -> dict:
+        """The Design tab's ``PillarDesign`` keyword arguments (texts with units): G when
+        it is given, else Poisson's ratio nu."""
+        out = {v[1]: getattr(self, name) for name, v in DESIGN_INPUTS.items()}
+        if out["G"].strip():
+            out.pop("nu")
+        else:
+            out.pop("G")
+        return out
+
+    @property
+    def distribution(self) -> dict:
+        """The Design tab's orientation distribution, as ``model.distributions.from_dict``
+        reads it (angles in degrees; psi is separate): one component, or with
+        ``mix_weight`` > 0 the mixture of two weighted components."""
+        first = _component(self.dist_family, self.dist_deg, self.dist_kappa)
+        w = float(self.mix_weight)
+        if w <= 0.0:
+            return first
+        second = _component(self.dist2_family, self.dist2_deg, self.dist2_kappa)
+        if w >= 1.0:
+            return second
+        return {"family": "mixture", "components": [first, second], "weights": [1.0 - w, w]}
+
+    def set_distribution(self, d: dict) -> None:
+        """Set the editor from a distribution's ``to_dict`` (e.g. an optimum); a mixture
+        of two components fills both, with the second's weight."""
+        if d["family"] == "mixture" and len(d["components"]) == 2:
+            (a, b), (wa, wb) = d["components"], d["weights"]
+            self.param.update(**_editor_values(a, ""), **_editor_values(b, "2"),
+                              mix_weight=clamp(wb / (wa + wb), MIX_BOUNDS))
+            return
+        self.param.update(**_editor_values(d, ""), mix_weight=0.0)
 
     # ------------------------------------------------------------------ model inputs
     @property
@@ -114,8 +222,29 @@ class ExplorerState(param.Parameterized):
         self.theta0 = float(round(float(degrees)) % 360)
 
     def reset(self) -> None:
-        """Every control back to its default (the tab stays where it is)."""
-        self.param.update(**{k: v for k, v in DEFAULTS.items() if k != "tab"}, notice="")
+        """Every control back to its default; the view stays (tab and projector mode: a
+        teacher resetting the physics keeps the projected page as it is)."""
+        self.param.update(**{k: v for k, v in DEFAULTS.items() if k not in VIEW_KEYS},
+                          notice="")
+
+    # ------------------------------------------------------------------ compare
+    def snapshot(self) -> dict:
+        """The controls a pinned state keeps (``PINNED_KEYS``), as they are now."""
+        return {name: getattr(self, name) for name in PINNED_KEYS}
+
+    def pin(self) -> None:
+        """Pin the current state as "A"; the controls go on as "B"."""
+        self.pinned = self.snapshot()
+
+    def clear_pin(self) -> None:
+        self.pinned = None
+
+    def swap_pin(self) -> None:
+        """Exchange A and B: the controls take the pinned state, which pins the current one."""
+        if self.pinned is None:
+            return
+        a, b = dict(self.pinned), self.snapshot()
+        self.param.update(**a, pinned=b)
 
     # ------------------------------------------------------------------ URL
     def to_query(self) -> dict[str, str]:
@@ -134,3 +263,23 @@ class ExplorerState(param.Parameterized):
         values, notices = parse(query)
         self.param.update(**values, notice=" ".join(notices))
         return notices
+
+    def restore_query(self, query) -> list[str]:
+        """The state URL ``query`` describes, exactly: what it does not name goes back to
+        its default (Back/Forward to an address). Returns the notices, as ``load_query``."""
+        values, notices = parse(query)
+        self.param.update(**{**DEFAULTS, **values}, notice=" ".join(notices))
+        return notices
+
+    def matching_preset(self) -> str | None:
+        """The regime preset whose k_r, k_theta are the current springs, if any."""
+        for name, (k_r, k_theta) in PRESETS.items():
+            if math.isclose(self.k_r, k_r, rel_tol=1e-6) and \
+                    math.isclose(self.k_theta, k_theta, rel_tol=1e-6):
+                return name
+        return None
+
+
+# One String parameter per design input (``DESIGN_INPUTS``), so the list lives in one place.
+for _name, _p in _design_parameters().items():
+    ExplorerState.param.add_parameter(_name, _p)

@@ -2,8 +2,10 @@
 
 A shared link carries every control (``?k_r=0.03&k_theta=0.03&F_N=1&theta0_deg=90``), so a
 reload or a colleague's browser shows the same view. ``parse`` never raises: a value it
-cannot use (not a number, NaN, infinite, out of range, unknown choice) is dropped, the
-control keeps its default, and a notice naming the parameter is returned for the page.
+cannot use (not a number, NaN, infinite, out of range, unknown choice, longer than
+``MAX_VALUE_CHARS``) is dropped, the control keeps its default, and a notice naming the
+parameter is returned for the page. ``panel_query`` guards Panel's own reading of the
+address (``app/app_hooks.py`` installs it) against the values Panel cannot convert.
 
 URL keys (values in the units of the controls):
 
@@ -15,11 +17,26 @@ URL keys (values in the units of the controls):
 ``regime``     ``pendulum``/``slider``/``stiff``/``soft``: sets k_r, k_theta (explicit
                ``k_r``/``k_theta`` override it)
 ``rtol``       solver tolerance, one of 1e-4 ... 1e-8
-``beta``       ``self`` (self-consistent N_c0/N_c) or a fixed value in (0, 1]
+``beta``       ``self`` (self-consistent N_c0/N_c) or a fixed value in ``BETA_BOUNDS``
 ``avg``        ``paper`` (Eq. 10) or ``duration`` (duration-weighted average)
 ``map``        ``5a`` (F_T,x/(mu0 F_N)) or ``5b`` (D_y/D_x) on the regime map
-``tab``        ``support``, ``polar``, ``map``, ``load`` or ``equations``
+``tab``        ``support``, ``array``, ``polar``, ``map``, ``load`` or ``equations``
+``orient``     ``uniform`` or ``fixed``: the orientations of the array under the slab
+``play``       ``1`` to start the animations playing when the page opens
 ``projector``  ``1`` for projector mode
+``d_<input>``  Design tab: a pillar-array input with its unit (``d_D=5 um``, ``d_V0=1 m/s``;
+               see ``DESIGN_INPUTS``); ``d_G`` empty means G from Poisson's ratio ``d_nu``
+``dist``       Design tab: ``fixed``, ``pair``, ``vonmises`` or ``uniform`` orientations
+``dist_deg``   Design tab: theta0 (fixed, pair) or the mean (von Mises) in degrees, [0, 360)
+``kappa``      Design tab: the von Mises concentration, in [0, 1e4]
+``psi_deg``    Design tab: the sliding direction psi to the array in degrees, [-180, 180]
+``mix``        Design tab: the weight of a second component in [0, 1] (0: no mixture),
+               which ``dist2``, ``dist2_deg`` and ``kappa2`` describe as above
+``objective``  Design tab: ``min-FTx`` or ``max-FTy``, what Optimise seeks
+``bound``      Design tab: its bound, |F_T,y|/(mu0 F_N) or F_T,x/(mu0 F_N), in [0, 2]
+``A``          the pinned state of a comparison, its keys and values as above joined as
+               ``key:value`` by commas: ``A=k_r:0.5,k_theta:0.2,F_N:1,theta0_deg:90``
+               (of ``PINNED_URL_KEYS``; ``rtol`` and ``beta`` only when not the default)
 =============  ====================================================================
 """
 from __future__ import annotations
@@ -27,20 +44,100 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Mapping
-from urllib.parse import parse_qs, urlencode
+from urllib.parse import parse_qs, parse_qsl, urlencode
 
 from model import REGIMES
+from model.controls import CONTROLS, OBJECTIVES
+from model.quantities import AVERAGES as _AVERAGES, MAP_FIGURES
+from model.units import PillarDesign, quantity
 
-K_BOUNDS = (0.01, 3.0)
-F_N_BOUNDS = (0.1, 10.0)
-RTOLS = (1e-4, 1e-5, 1e-6, 1e-7, 1e-8)
-TABS = ("support", "polar", "map", "load", "equations")
-AVERAGES = ("paper", "duration")
-MAP_QUANTITIES = ("5a", "5b")
+# The ranges and defaults are the model's (model/controls.py); only the page's own
+# choices (tabs, projector mode) are defined here.
+K_BOUNDS = CONTROLS["k_r"].bounds
+F_N_BOUNDS = CONTROLS["F_N"].bounds
+#: The fixed load factor beta = N_c0/N_c, bounded below by the physical limit of the model
+#: (``model.validation.BETA``).
+BETA_BOUNDS = CONTROLS["beta"].bounds
+THETA0_DEG = CONTROLS["theta0_deg"].interval
+RTOLS = CONTROLS["rtol"].choices
+TABS = ("support", "array", "polar", "map", "load", "equations", "design")
+ORIENTATIONS = ("uniform", "fixed")
+AVERAGES = tuple(_AVERAGES)
+MAP_QUANTITIES = tuple(MAP_FIGURES)
+
+#: Longest URL value read, in characters. Every value the page writes has a few characters;
+#: a longer one is refused unread: Python refuses to convert more than 4300 digits to an
+#: int (Panel's parser would fail on ``?x=`` + 4301 digits), and no request may make the
+#: server convert megabyte-long numbers.
+MAX_VALUE_CHARS = 100
 
 #: The default view: the pendulum support of Fig. 7a (theta0 = 90 deg, F_N = 1).
-DEFAULTS = dict(k_r=3.0, k_theta=0.01, F_N=1.0, theta0=90.0, rtol=1e-6, beta_mode="self",
-                beta=1.0, average="paper", map_quantity="5a", tab="support", projector=False)
+DEFAULTS = dict(k_r=CONTROLS["k_r"].default, k_theta=CONTROLS["k_theta"].default,
+                F_N=CONTROLS["F_N"].default, theta0=CONTROLS["theta0_deg"].default,
+                rtol=CONTROLS["rtol"].default, beta_mode=CONTROLS["beta_mode"].default,
+                beta=CONTROLS["beta"].default, average=AVERAGES[0],
+                map_quantity=MAP_QUANTITIES[0], tab="support", projector=False,
+                orientation="uniform", play=False, pinned=None)
+
+#: What a pinned state "A" keeps (``ExplorerState.pin``): every input of the support, the
+#: orientation sweep, the uniform array and the load curve.
+PINNED_KEYS = ("k_r", "k_theta", "F_N", "theta0", "rtol", "beta_mode", "beta")
+#: Their URL keys, which ``A=key:value,...`` may hold.
+PINNED_URL_KEYS = ("k_r", "k_theta", "F_N", "theta0_deg", "rtol", "beta")
+
+# ---------------------------------------------------------------- Design tab
+#: The default pillars: the LDPE example of the notes (``PillarDesign.example``), sliding at
+#: V0 = 1 m/s instead of the notes' 1 cm/s. At 1 cm/s k~ ~ 5e6 lies beyond the model range,
+#: is computed scaled to 1e6, and its array costs minutes of a worker; at 1 m/s the same
+#: pillars sit at k~_r ~ 550, k~_theta ~ 4900 (outside the paper's map, stiff regime) and
+#: compute in seconds. The speed line on the map shows both.
+_EXAMPLE = PillarDesign.example(V0="1 m/s").to_dict()
+#: The display unit of each velocity input (the example's cm/s reads badly at 1 m/s).
+_SHOWN_UNIT = {"V0": "m/s"}
+
+
+def _example_text(field: str) -> str:
+    value, unit = _EXAMPLE.get(field), _SHOWN_UNIT.get(field, _EXAMPLE["units"].get(field, ""))
+    if value is None:
+        return ""
+    if field in _SHOWN_UNIT:
+        value = quantity(field, f"{value} {_EXAMPLE['units'][field]}").to(unit).magnitude
+    return f"{value:.6g} {unit}".strip()
+
+
+#: Design inputs: state parameter -> (URL key, ``PillarDesign`` field, label, what it is).
+#: The text of
+#: each is a quantity with its unit, parsed by ``model.units`` (pint).
+DESIGN_INPUTS = {
+    "design_D": ("d_D", "D", "D", "pillar diameter D"),
+    "design_h": ("d_h", "h", "h", "pillar height h"),
+    "design_E": ("d_E", "E", "E", "Young's modulus E"),
+    "design_G": ("d_G", "G", "G (or ν)", "shear modulus G (empty: G = E/(2(1+ν)))"),
+    "design_nu": ("d_nu", "nu", "ν", "Poisson's ratio ν (used when G is empty)"),
+    "design_rho": ("d_rho", "rho", "ρ", "density ρ of the pillar"),
+    "design_r0": ("d_r0", "r0", "r₀", "radial rest length r₀"),
+    "design_d_x": ("d_dx", "d_x", "d_x", "pillar spacing along x"),
+    "design_d_y": ("d_dy", "d_y", "d_y", "pillar spacing along y"),
+    "design_L_x": ("d_Lx", "L_x", "L_x", "slab length L_x along the sliding direction"),
+    "design_L_y": ("d_Ly", "L_y", "L_y", "slab width L_y"),
+    "design_F_N": ("d_FN", "F_N", "F_N (total)", "total normal load F_N on the slab"),
+    "design_V0": ("d_V0", "V0", "V₀", "sliding speed V₀"),
+    "design_V_s": ("d_Vs", "V_s", "V_s", "velocity scale V_s of the friction law (ζ = V₀/V_s)"),
+}
+DESIGN_DEFAULTS = {name: _example_text(v[1]) for name, v in DESIGN_INPUTS.items()}
+#: Orientation distributions the Design tab edits (``model.distributions.FAMILIES``' names).
+DIST_FAMILIES = ("fixed", "pair", "vonmises", "uniform")
+KAPPA_BOUNDS = (0.0, 1e4)
+PSI_BOUNDS = (-180.0, 180.0)
+MIX_BOUNDS = CONTROLS["mix_weight"].bounds
+BOUND_BOUNDS = CONTROLS["bound"].bounds
+DEFAULTS.update(DESIGN_DEFAULTS, dist_family="vonmises", dist_deg=90.0, dist_kappa=4.0,
+                dist_psi=0.0, mix_weight=CONTROLS["mix_weight"].default,
+                dist2_family="fixed", dist2_deg=0.0, dist2_kappa=4.0,
+                opt_objective=CONTROLS["objective"].default, opt_bound=CONTROLS["bound"].default)
+#: The Design tab's numeric distribution and optimisation controls: URL key -> parameter.
+_DESIGN_NUMBERS = (("dist_deg", "dist_deg"), ("kappa", "dist_kappa"), ("psi_deg", "dist_psi"),
+                   ("mix", "mix_weight"), ("dist2_deg", "dist2_deg"), ("kappa2", "dist2_kappa"))
 
 #: Always written to the URL, so a shared link states the physics explicitly.
 ALWAYS = ("k_r", "k_theta", "F_N", "theta0")
@@ -79,16 +176,47 @@ def _flag(text):
 
 # URL key -> (state parameter, reader returning the value or None, what is expected).
 _READERS = {
-    "k_r": ("k_r", _in(*K_BOUNDS), "a number in [0.01, 3]"),
-    "k_theta": ("k_theta", _in(*K_BOUNDS), "a number in [0.01, 3]"),
-    "F_N": ("F_N", _in(*F_N_BOUNDS), "a number in [0.1, 10]"),
-    "theta0_deg": ("theta0", _in(0.0, 360.0, hi_open=True), "degrees in [0, 360)"),
-    "rtol": ("rtol", _rtol, "one of " + ", ".join(f"{r:g}" for r in RTOLS)),
-    "avg": ("average", _choice(AVERAGES), "'paper' or 'duration'"),
-    "map": ("map_quantity", _choice(MAP_QUANTITIES), "'5a' or '5b'"),
+    "k_r": ("k_r", _in(*K_BOUNDS), CONTROLS["k_r"].expected()),
+    "k_theta": ("k_theta", _in(*K_BOUNDS), CONTROLS["k_theta"].expected()),
+    "F_N": ("F_N", _in(*F_N_BOUNDS), CONTROLS["F_N"].expected()),
+    "theta0_deg": ("theta0", _in(THETA0_DEG.lo, THETA0_DEG.hi, hi_open=THETA0_DEG.hi_open),
+                   f"degrees in {THETA0_DEG}"),
+    "rtol": ("rtol", _rtol, CONTROLS["rtol"].expected()),
+    "avg": ("average", _choice(AVERAGES), " or ".join(map(repr, AVERAGES))),
+    "map": ("map_quantity", _choice(MAP_QUANTITIES), " or ".join(map(repr, MAP_QUANTITIES))),
     "tab": ("tab", _choice(TABS), "one of " + ", ".join(TABS)),
     "projector": ("projector", _flag, "1 or 0"),
+    "orient": ("orientation", _choice(ORIENTATIONS), "'uniform' or 'fixed'"),
+    "play": ("play", _flag, "1 or 0"),
+    "dist": ("dist_family", _choice(DIST_FAMILIES), "one of " + ", ".join(DIST_FAMILIES)),
+    "dist_deg": ("dist_deg", _in(0.0, 360.0, hi_open=True), "degrees in [0, 360)"),
+    "kappa": ("dist_kappa", _in(*KAPPA_BOUNDS), f"a number in {list(KAPPA_BOUNDS)}"),
+    "psi_deg": ("dist_psi", _in(*PSI_BOUNDS), f"degrees in {list(PSI_BOUNDS)}"),
+    "mix": ("mix_weight", _in(*MIX_BOUNDS), CONTROLS["mix_weight"].expected()),
+    "dist2": ("dist2_family", _choice(DIST_FAMILIES), "one of " + ", ".join(DIST_FAMILIES)),
+    "dist2_deg": ("dist2_deg", _in(0.0, 360.0, hi_open=True), "degrees in [0, 360)"),
+    "kappa2": ("dist2_kappa", _in(*KAPPA_BOUNDS), f"a number in {list(KAPPA_BOUNDS)}"),
+    "objective": ("opt_objective", _choice(OBJECTIVES), " or ".join(map(repr, OBJECTIVES))),
+    "bound": ("opt_bound", _in(*BOUND_BOUNDS), CONTROLS["bound"].expected()),
 }
+
+
+def _design_text(field):
+    def check(text):
+        if text == "" and field == "G":  # no shear modulus: from Poisson's ratio
+            return ""
+        if len(text) > 40:
+            return None
+        try:
+            quantity(field, text)
+        except ValueError:
+            return None
+        return text
+    return check
+
+
+for _name, (_key, _field, *_) in DESIGN_INPUTS.items():
+    _READERS[_key] = (_name, _design_text(_field), f"a quantity like {DESIGN_DEFAULTS[_name] or '0.36 GPa'!r}")
 
 
 def _fmt(value: float) -> str:
@@ -109,17 +237,59 @@ def serialize(values: Mapping) -> dict[str, str]:
         out["rtol"] = f"{values['rtol']:g}"
     if values["beta_mode"] == "fixed":
         out["beta"] = _fmt(values["beta"])
-    for key, name in (("avg", "average"), ("map", "map_quantity"), ("tab", "tab")):
+    for key, name in (("avg", "average"), ("map", "map_quantity"), ("tab", "tab"),
+                      ("orient", "orientation")):
         if values[name] != DEFAULTS[name]:
             out[key] = str(values[name])
-    if values["projector"]:
-        out["projector"] = "1"
+    for key in ("projector", "play"):
+        if values[key]:
+            out[key] = "1"
+    # The Design tab's values, when given, are written where they differ from the defaults.
+    design = {name: values.get(name, DEFAULTS[name]) for name in DEFAULTS}
+    for name, (key, *_) in DESIGN_INPUTS.items():
+        if design[name] != DEFAULTS[name]:
+            out[key] = str(design[name])
+    for key, name in (("dist", "dist_family"), ("dist2", "dist2_family"),
+                      ("objective", "opt_objective")):
+        if design[name] != DEFAULTS[name]:
+            out[key] = design[name]
+    for key, name in _DESIGN_NUMBERS:
+        if design[name] != DEFAULTS[name]:
+            out[key] = _fmt(design[name])
+    if design["opt_bound"] is not None:
+        out["bound"] = _fmt(design["opt_bound"])
+    if values.get("pinned"):
+        out["A"] = pinned_text(values["pinned"])
     return out
+
+
+PINNED_EXPECTED = ("key:value pairs joined by commas, of " + ", ".join(PINNED_URL_KEYS)
+                   + ", such as k_r:0.5,k_theta:0.2,F_N:1,theta0_deg:90")
+
+
+def pinned_text(pinned: Mapping) -> str:
+    """The ``A=`` text of a pinned state: its URL values (as ``serialize``) as ``k:v,...``."""
+    query = serialize({**DEFAULTS, **{k: pinned[k] for k in PINNED_KEYS}})
+    return ",".join(f"{key}:{query[key]}" for key in PINNED_URL_KEYS if key in query)
+
+
+def parse_pinned(text: str) -> dict | None:
+    """The pinned state an ``A=`` text describes (defaults for keys it omits), or None when
+    any part is unusable: comparing with a state other than the one written is worse."""
+    pairs = [part.split(":", 1) for part in text.split(",") if part.strip()]
+    if not pairs or any(len(pair) != 2 for pair in pairs):
+        return None
+    query = {key.strip(): value.strip() for key, value in pairs}
+    if not set(query) <= set(PINNED_URL_KEYS):
+        return None
+    values, notices = parse(query)
+    return None if notices else {k: values.get(k, DEFAULTS[k]) for k in PINNED_KEYS}
 
 
 def to_search(values: Mapping) -> str:
     """``serialize`` as a URL search string, ``?k_r=...&...``."""
-    return "?" + urlencode(serialize(values))
+    # ":" and "," stay readable in the pinned state, ``A=k_r:0.5,k_theta:0.2,...``.
+    return "?" + urlencode(serialize(values), safe=":,")
 
 
 def _text(value) -> str:
@@ -145,24 +315,37 @@ def parse(query: Mapping | str) -> tuple[dict, list[str]]:
     items = {str(k): _text(v) for k, v in query.items()}
     regime = items.pop("regime", None)
     if regime is not None:
-        if regime in REGIMES:
+        if len(regime) > MAX_VALUE_CHARS:
+            notices.append(_too_long("regime", regime))
+        elif regime in REGIMES:
             values.update(k_r=REGIMES[regime].k_r, k_theta=REGIMES[regime].k_theta)
         else:
             notices.append(_notice("regime", regime, "one of " + ", ".join(REGIMES)))
     for key, text in items.items():
         if key.startswith("bokeh"):
             continue
+        if key not in ("beta", "A") and key not in _READERS:
+            notices.append(f"Unknown URL parameter {_shown(key)} ignored.")
+            continue
+        if len(text) > MAX_VALUE_CHARS:
+            notices.append(_too_long(key, text))
+            continue
+        if key == "A":
+            pinned = parse_pinned(text)
+            if pinned is None:
+                notices.append(_notice("A", text, PINNED_EXPECTED))
+            else:
+                values["pinned"] = pinned
+            continue
         if key == "beta":
-            value = "self" if text == "self" else _in(0.0, 1.0)(text)
+            value = "self" if text == "self" else _in(*BETA_BOUNDS)(text)
             if value == "self":
                 values["beta_mode"] = "self"
-            elif value is not None and value > 0:
+            elif value is not None:
                 values.update(beta_mode="fixed", beta=value)
             else:
-                notices.append(_notice("beta", text, "'self' or a number in (0, 1]"))
-            continue
-        if key not in _READERS:
-            notices.append(f"Unknown URL parameter {_shown(key)} ignored.")
+                notices.append(_notice("beta", text, "'self' or a number in "
+                                       f"{CONTROLS['beta'].interval}"))
             continue
         name, read, expected = _READERS[key]
         value = read(text)
@@ -186,6 +369,32 @@ def _shown(text: str) -> str:
     return _MARKUP.sub(r"\\\1", shown)
 
 
+def _too_long(key: str, text: str) -> str:
+    return (f"URL parameter {key}={_shown(text)} is too long ({len(text)} characters, at most "
+            f"{MAX_VALUE_CHARS}); the default is used.")
+
+
 def _notice(key: str, text: str, expected: str) -> str:
     return (f"URL parameter {key}={_shown(text)} is not usable ({expected} expected); "
             "the default is used.")
+
+
+def panel_query(parse_query):
+    """``parse_query`` (Panel's reader of ``?a=1&b=x``, ``panel.util.parse_query``) made safe
+    for any address: values longer than ``MAX_VALUE_CHARS``, and values Panel's own reader
+    raises on (``int()`` of 4301 digits, or of a digit ``str.isdigit`` accepts but ``int``
+    does not, such as ``\u00b2``), are left out, as ``parse`` leaves them out of the state.
+    Unguarded, one such value stops the page's address from syncing with the server."""
+    def guarded(query: str) -> dict:
+        values = {}
+        for key, value in parse_qsl(query[1:]):
+            if len(value) > MAX_VALUE_CHARS:
+                continue
+            try:
+                values.update(parse_query("?" + urlencode({key: value})))
+            except (ValueError, TypeError, SyntaxError, RecursionError, MemoryError):
+                continue
+        return values
+
+    guarded.__wrapped__ = parse_query
+    return guarded

@@ -6,7 +6,8 @@ Reports medians over repeats, each with its min and max, for: one fixed-orientat
 array point (beta fixed and self-consistent), a 72-point orientation sweep, and uniform
 arrays with self-consistent beta at quadrature error <= 1e-3, with the error estimates
 and beta residuals of the same runs; the uniform-array cost against its tolerances;
-batch against single-call throughput; peak memory. Each run is repeated until about
+batch against single-call throughput; peak memory; 24 x 24 regime maps at F_N = 0.1,
+1, 3, 10 on 2 processes from an empty disk cache (one 8 x 8 map with --quick). Each run is repeated until about
 0.2 s in all, at least 3 times (0.05 s and 1 time for the tolerance table in --quick).
 The uniform-array LRU caches are cleared before each repeat so that every run computes
 from scratch.
@@ -34,7 +35,7 @@ from model._kernel import warmup  # noqa: E402
 from model.support import _simulate  # noqa: E402
 from model.uniform import _uniform  # noqa: E402
 
-from spread import cell, repeats_for, spread  # noqa: E402
+from spread import cell, cold_runs  # noqa: E402
 
 
 def _clear():
@@ -48,13 +49,7 @@ MIN_TOTAL = {False: 0.2, True: 0.05}  # seconds to repeat each run for (full, --
 def timed(fn, min_total, lo=3, hi=21):
     """Median, min, max seconds and run count of ``fn()`` over cold-cache runs, repeated
     until about ``min_total`` seconds in all and at least ``lo`` times; and its last value."""
-    times, value = [], None
-    while len(times) < (repeats_for(times[0], min_total, lo, hi) if times else 1):
-        _clear()
-        start = time.perf_counter()
-        value = fn()
-        times.append(time.perf_counter() - start)
-    t = spread(times)
+    t, value = cold_runs(fn, _clear, min_total, lo, hi)
     return t["median"], t["min"], t["max"], t["n"], value
 
 
@@ -130,6 +125,40 @@ def throughput(quick: bool) -> dict:
     return out
 
 
+def map_timings(quick: bool) -> list:
+    """Regime maps (Fig. 5) on 2 processes with an empty disk cache: wall time to the
+    coarse 8 x 8 subgrid and to the whole map, and the CPU seconds of all processes."""
+    import resource
+
+    from model.sweeps import regime_map
+
+    n, loads = (8, (1.0,)) if quick else (24, (0.1, 1.0, 3.0, 10.0))
+    rows = []
+    for F_N in loads:
+        with tempfile.TemporaryDirectory() as empty:
+            old = os.environ.get("MICROPILLAR_CACHE_DIR")
+            os.environ["MICROPILLAR_CACHE_DIR"] = empty
+            coarse = {}
+            cpu0 = sum(resource.getrusage(w).ru_utime + resource.getrusage(w).ru_stime
+                       for w in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
+            start = time.perf_counter()
+            try:
+                r = regime_map(n=n, F_N=F_N, tol=1e-3, workers=2,
+                               coarse=lambda s: coarse.setdefault("s", time.perf_counter() - start))
+            finally:
+                if old is None:
+                    os.environ.pop("MICROPILLAR_CACHE_DIR")
+                else:
+                    os.environ["MICROPILLAR_CACHE_DIR"] = old
+            wall = time.perf_counter() - start
+            cpu = sum(resource.getrusage(w).ru_utime + resource.getrusage(w).ru_stime
+                      for w in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN)) - cpu0
+        rows.append(dict(F_N=F_N, n=n, wall_s=wall, coarse_s=coarse.get("s"), cpu_s=cpu,
+                         succeeded=int(np.sum(r.columns["success"])), points=len(r),
+                         max_quadrature_error=float(np.max(r.columns["quadrature_error_FTx"]))))
+    return rows
+
+
 def peak_rss_mb(codes: dict) -> dict:
     """Peak resident memory (MB) of a fresh interpreter running each code string.
 
@@ -178,6 +207,17 @@ def report(rows) -> str:
     return head + "\n".join(lines) + "\n"
 
 
+def map_report(maps) -> str:
+    lines = ["", "## Regime maps (2 processes, empty disk cache, one run each)", "",
+             "| F_N | grid | first 8x8 s | whole map s | CPU s (all processes) | succeeded | "
+             "largest quadrature error |", "|---|---|---|---|---|---|---|"]
+    lines += [f"| {m['F_N']:g} | {m['n']}x{m['n']} | "
+              f"{'-' if m['coarse_s'] is None else format(m['coarse_s'], '.2f')} | "
+              f"{m['wall_s']:.2f} | {m['cpu_s']:.1f} | {m['succeeded']}/{m['points']} | "
+              f"{m['max_quadrature_error']:.1e} |" for m in maps]
+    return "\n".join(lines) + "\n"
+
+
 def extra_report(costs, rates, mem) -> str:
     lines = ["", "## Uniform array cost against tolerance", "",
              "| regime | quadrature tol | member rtol | beta | ms median [min–max] | runs | members | "
@@ -213,13 +253,16 @@ def main():
     rates = throughput(args.quick)
     phases["throughput"], t = time.perf_counter() - t, time.perf_counter()
     mem = memory(args.quick)
-    phases["peak_rss_mb (subprocesses)"] = time.perf_counter() - t
-    text = report(rows) + extra_report(costs, rates, mem)
+    phases["peak_rss_mb (subprocesses)"], t = time.perf_counter() - t, time.perf_counter()
+    maps = map_timings(args.quick)
+    phases["regime maps"] = time.perf_counter() - t
+    text = report(rows) + extra_report(costs, rates, mem) + map_report(maps)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     (out / "arrays.md").write_text(text)
     (out / "arrays.json").write_text(json.dumps(
         {"timings": rows, "tolerance_costs": costs, "throughput": rates, "peak_rss_mb": mem,
+         "regime_maps": maps,
          "phases_wall_s": phases},
         indent=1, default=float))
     print(text)

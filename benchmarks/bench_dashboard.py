@@ -6,7 +6,14 @@
    (``app.worker.compute_support``: fixed array with self-consistent beta + 400-sample
    trajectory) and the polar view (``orientation_table`` over the dashboard's theta0
    grid), each over random slider positions, uncached.
-2. In headless Chromium (Debian's ``/usr/bin/chromium`` through Playwright, as the
+2. The server's own cost, in this process (CPU time): building one page (the dashboard,
+   its Bokeh models, the document's JSON the browser pulls), and one slider move (the
+   state change, the result applied to the views, the patch Bokeh sends: its JSON and
+   its binary buffers -- numpy arrays travel as binary -- and their sizes), the result
+   itself taken from the shared cache so the compute is not counted twice; beside it, the
+   same changes serialised one message each, as Bokeh's ``unhold()`` sends them (what
+   ``app.patches.release`` saves).
+3. In headless Chromium (Debian's ``/usr/bin/chromium`` through Playwright, as the
    browser tests): ``panel serve app`` is started, the page load time is taken, and the
    theta0 slider is moved by key presses; each press is timed from ``keydown`` until the
    orbit data has changed (``change``) and until the next frame is painted (``paint``).
@@ -30,7 +37,7 @@ sys.path.insert(0, str(ROOT))
 os.environ["PYTHONPATH"] = os.pathsep.join(
     [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
 
-from app.compute import POLAR_THETA0  # noqa: E402
+from app.worker import POLAR_THETA0  # noqa: E402
 from app.worker import compute_support  # noqa: E402
 from model import Params  # noqa: E402
 from model.support import _simulate  # noqa: E402
@@ -67,6 +74,73 @@ def server_side(n: int) -> dict:
     return {"support view compute": percentiles(support), "polar view compute": percentiles(polar)}
 
 
+def server_cost(n: int) -> dict:
+    """CPU ms of a page build and of one slider move's update, and the update's payload."""
+    import panel as pn
+    from bokeh.document import Document
+    from bokeh.protocol import Protocol
+
+    from app.views import Dashboard
+
+    pn.extension("mathjax", notifications=False)
+    build, pull, page_kb = [], [], []
+    for _ in range(n):
+        doc = Document()
+        start = time.process_time()
+        page = Dashboard()
+        doc.add_root(page.__panel__().get_root(doc))
+        build.append((time.process_time() - start) * 1e3)
+        start = time.process_time()
+        text = json.dumps(doc.to_json(), default=str)
+        pull.append((time.process_time() - start) * 1e3)
+        page_kb.append(len(text) / 1e3)
+    events = []
+
+    class Recorder:
+        def _document_patched(self, event):
+            events.append(event)
+    doc.callbacks.on_change_dispatch_to(Recorder())
+    protocol = Protocol()
+    rng = np.random.default_rng(3)
+    moves = {"theta0": [], "k_r": []}
+    for i in range(2 * n):
+        name = "theta0" if i % 2 == 0 else "k_r"
+        value = float(rng.integers(0, 360)) if name == "theta0" else float(
+            10 ** rng.uniform(-2, np.log10(3)))
+        events.clear()
+        setattr(page.state, name, value)  # computed (cached after the first time)
+        setattr(page.state, name, value * 0.999 + 1e-3)
+        events.clear()
+        start = time.process_time()
+        setattr(page.state, name, value)  # the result from the shared cache
+        serialise = time.process_time()
+        message = protocol.create("PATCH-DOC", list(events))  # as app.patches.release
+        content = message.content_json
+        cpu = (time.process_time() - start) * 1e3
+        one = (time.process_time() - serialise) * 1e3
+        buffers = sum(len(b.to_bytes()) for b in message.buffers)
+        # What Bokeh's unhold() sends instead: one message per change.
+        start = time.process_time()
+        for event in events:
+            protocol.create("PATCH-DOC", [event]).content_json
+        apart = (time.process_time() - start) * 1e3
+        moves[name].append((cpu, len(content) / 1e3, buffers / 1e3, len(message.buffers),
+                            len(events), apart, one))
+    out = {"page build (dashboard + Bokeh models)": percentiles(build),
+           "page pull (document JSON)": percentiles(pull),
+           "page size kB": float(np.median(page_kb))}
+    for name, rows in moves.items():
+        a = np.asarray(rows)
+        out[f"{name} move: update + patch"] = percentiles(a[:, 0])
+        out[f"{name} move: its patch, one message"] = percentiles(a[:, 6])
+        out[f"{name} move: its patch, one message per change"] = percentiles(a[:, 5])
+        out[f"{name} move payload"] = {"json_kB": float(np.median(a[:, 1])),
+                                       "binary_kB": float(np.median(a[:, 2])),
+                                       "buffers": int(np.median(a[:, 3])),
+                                       "changes": int(np.median(a[:, 4]))}
+    return out
+
+
 def browser_side(presses: int, out: Path) -> dict:
     from tests.browser.page_tools import measure_slider_latency, settle, slider_handle, wait_for_app
     from tests.browser.serving import launch_chromium, serve_app
@@ -91,12 +165,19 @@ def browser_side(presses: int, out: Path) -> dict:
             "key press -> redrawn": percentiles(paint)}
 
 
-def report(server: dict, browser: dict) -> str:
+def report(server: dict, browser: dict, cost: dict | None = None) -> str:
     lines = ["# Dashboard latency", "", "| measurement | n | median ms [min–max] | p95 ms |",
              "|---|---:|---|---:|"]
-    for name, s in {**server, **{k: v for k, v in browser.items() if isinstance(v, dict)}}.items():
+    timings = {k: v for k, v in (cost or {}).items() if isinstance(v, dict) and "n" in v}
+    for name, s in {**server, **{f"server CPU: {k}": v for k, v in timings.items()},
+                    **{k: v for k, v in browser.items() if isinstance(v, dict)}}.items():
         lines.append(f"| {name} | {s['n']} | {s['p50_ms']:.1f} [{s['min_ms']:.1f}–{s['max_ms']:.1f}] | "
                      f"{s['p95_ms']:.1f} |")
+    if cost:
+        lines += ["", f"Page: {cost['page size kB']:.0f} kB of document JSON."] + [
+            f"{k}: {v['changes']} changes, {v['json_kB']:.1f} kB JSON + {v['binary_kB']:.1f} kB "
+            f"in {v['buffers']} binary buffers, sent as one message (``app.patches``)."
+            for k, v in cost.items() if isinstance(v, dict) and "json_kB" in v]
     if browser:
         lines += ["", f"page load to a rendered document: {browser['page load to rendered (s)']:.2f} s "
                   "(one load)"]
@@ -115,11 +196,15 @@ def main():
     server = server_side(8 if args.quick else 40)
     phases = {"server side": time.perf_counter() - start}
     start = time.perf_counter()
+    cost = server_cost(3 if args.quick else 10)
+    phases["server cost per page and update"] = time.perf_counter() - start
+    start = time.perf_counter()
     browser = {} if args.no_browser else browser_side(6 if args.quick else 30, out)
     phases["browser (server start, page load, key presses)"] = time.perf_counter() - start
-    text = report(server, browser)
+    text = report(server, browser, cost)
     (out / "dashboard.md").write_text(text)
     (out / "dashboard.json").write_text(json.dumps({"server": server, "browser": browser,
+                                                    "server_cost": cost,
                                                     "phases_wall_s": phases}, indent=1))
     print(text)
 

@@ -16,13 +16,14 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 import panel  # noqa: E402,F401  (registers Panel's Bokeh models for the replicas)
+import app.views  # noqa: E402,F401  (and the app's own: the player's frame, the page's behaviour)
 from bokeh.client.websocket import WebSocketClientConnectionWrapper  # noqa: E402
 from bokeh.document import Document  # noqa: E402
 from bokeh.events import DocumentReady  # noqa: E402
 from bokeh.protocol import Protocol  # noqa: E402
 from bokeh.protocol.receiver import Receiver  # noqa: E402
 from bokeh.util.token import get_session_id  # noqa: E402
-from tornado.httpclient import AsyncHTTPClient  # noqa: E402
+from tornado.httpclient import AsyncHTTPClient, HTTPRequest  # noqa: E402
 from tornado.websocket import websocket_connect  # noqa: E402
 
 
@@ -30,8 +31,22 @@ UPDATE_TIMEOUT_S = 30.0
 OPEN_TIMEOUT_S = 120.0
 #: Pages loading at the same time (people arrive over some seconds, not all at one instant).
 OPENING_AT_ONCE = 2
+#: The title of the server's busy page (app/main.py) and how long a client waits before
+#: it reloads it.
+BUSY_TITLE, BUSY_RETRY_S = b"(busy)</title>", 1.0
 THINK_S = (0.2, 0.8)
 DRAG_PROBABILITY, DRAG_STEPS, DRAG_GAP_S = 0.2, 4, 0.03
+#: The classroom profile: seconds between one session's moves (uniform, mean 3 s),
+#: whether or not the previous move's data has arrived (open loop).
+CLASS_GAP_S = (2.0, 4.0)
+#: The two ways a session moves its sliders (``Session.run``).
+PROFILES = {
+    "class": f"open loop: a slider move every {CLASS_GAP_S[0]:g}-{CLASS_GAP_S[1]:g} s "
+             "(mean 3 s), sent on schedule whether or not the last one's data has arrived",
+    "drag": f"closed loop: move, wait for the pushed data, pause {THINK_S[0]}-{THINK_S[1]} s, "
+            f"again; one theta0 move in {round(1 / DRAG_PROBABILITY)} is a {DRAG_STEPS}-position "
+            f"drag ({DRAG_GAP_S * 1e3:.0f} ms apart)",
+}
 
 
 # ------------------------------------------------------------------------------ sessions
@@ -43,8 +58,12 @@ class SessionFailure(Exception):
 class Session:
     """One browser stand-in (see the module doc): a replica of the page's document."""
 
-    def __init__(self, index: int, base: str, app: str = "app", seed: int = 0):
+    def __init__(self, index: int, base: str, app: str = "app", seed: int = 0,
+                 query: str = "", source: str | None = None):
         self.index, self.base, self.app = index, base, app
+        #: The page's URL query (``?k_r=...``) and the local address to connect from (a
+        #: loopback address such as 127.0.0.2 is another client to the server).
+        self.query, self.source = query, source
         self.rng = random.Random(seed * 1000 + index)
         self.protocol = Protocol()
         self.receiver = Receiver(self.protocol)
@@ -54,6 +73,8 @@ class Session:
         self.latencies: list[float] = []
         self.drag_latencies: list[float] = []
         self.open_s = math.nan
+        self.opened_at = math.nan
+        self.busy_pages = 0  # busy pages received before the dashboard
         self.errors: list[str] = []
         self.patches = 0
         self.orbit_pushes = 0  # patches carrying the orbit's data
@@ -75,16 +96,25 @@ class Session:
                 return message
 
     async def open(self) -> None:
-        start = time.perf_counter()
-        page = await AsyncHTTPClient().fetch(f"{self.base}/{self.app}",
-                                             request_timeout=OPEN_TIMEOUT_S)
+        start = self.opened_at = time.perf_counter()
+        while True:
+            page = await AsyncHTTPClient().fetch(HTTPRequest(
+                f"{self.base}/{self.app}{self.query}", request_timeout=OPEN_TIMEOUT_S,
+                network_interface=self.source))
+            if BUSY_TITLE not in page.body:
+                break
+            # The server's busy page (too many unopened pages from this address): reload
+            # after a moment, as its Reload button asks; the wait counts in the open time.
+            self.busy_pages += 1
+            await asyncio.sleep(BUSY_RETRY_S)
         match = re.search(r'"token"\s*:\s*"([^"]+)"', page.body.decode())
         if match is None:
             raise SessionFailure("no session token in the page")
         token = match.group(1)
         self.session_id = get_session_id(token)
         url = self.base.replace("http://", "ws://", 1) + f"/{self.app}/ws"
-        self.socket = await websocket_connect(url, subprotocols=["bokeh", token],
+        self.socket = await websocket_connect(HTTPRequest(url, network_interface=self.source),
+                                              subprotocols=["bokeh", token],
                                               max_message_size=50 * 2**20)
         self.conn = WebSocketClientConnectionWrapper(self.socket)
         ack = await self._read()
@@ -112,6 +142,45 @@ class Session:
         await self._flush()
         self.open_s = time.perf_counter() - start
         self._reader = asyncio.create_task(self._read_loop())
+
+    async def first_plot(self, timeout: float = UPDATE_TIMEOUT_S) -> float:
+        """Seconds from the page request until the orbit was drawn with data (the page
+        is built at once and fills in when the first result arrives)."""
+        deadline = time.perf_counter() + timeout
+        while not len(self.orbit.data.get("x0", ())):
+            left = deadline - time.perf_counter()
+            if left <= 0 or self.errors:
+                raise SessionFailure(f"no plot within {timeout:.0f} s of the page request"
+                                     + (f" ({self.errors[-1]})" if self.errors else ""))
+            self._patched.clear()
+            try:
+                await asyncio.wait_for(self._patched.wait(), timeout=left)
+            except asyncio.TimeoutError:
+                pass
+        return time.perf_counter() - self.opened_at
+
+    async def download(self, css_class: str, timeout: float = UPDATE_TIMEOUT_S):
+        """Click the ``FileDownload`` button with ``css_class`` as the page does and wait
+        for the file the server sends back: (seconds, the file's text)."""
+        import base64
+
+        button = self._find(css_class)
+        transfers = button._transfers
+        start = time.perf_counter()
+        button.clicks = button.clicks + 1
+        await self._flush()
+        deadline = start + timeout
+        while button._transfers == transfers:
+            left = deadline - time.perf_counter()
+            if left <= 0 or self.errors:
+                raise SessionFailure(f"no file from {css_class} within {timeout:.0f} s")
+            self._patched.clear()
+            try:
+                await asyncio.wait_for(self._patched.wait(), timeout=left)
+            except asyncio.TimeoutError:
+                pass
+        payload = button.data.split(",", 1)[-1]
+        return time.perf_counter() - start, base64.b64decode(payload).decode("utf-8")
 
     def _find(self, css_class: str):
         for model in self.doc.models:
@@ -170,10 +239,18 @@ class Session:
             value = s.start + ((round((value - s.start) / s.step) + 1) % (steps + 1)) * s.step
         return round(value, 6)
 
-    async def move(self) -> None:
+    def _arrived(self, name: str, value: float, pushes: int) -> bool:
+        """New orbit data was pushed since ``pushes`` (not necessarily different: on the
+        axis, k_theta does not change the motion); for theta0 it must be the requested
+        angle's."""
+        if self.orbit_pushes == pushes:
+            return False
+        return name != "theta0" or self._readout_shows(value)
+
+    async def move(self, drags: bool = True) -> None:
         """One slider move (or drag) and the wait for its update."""
         name = self.rng.choice(list(self.sliders))
-        drag = name == "theta0" and self.rng.random() < DRAG_PROBABILITY
+        drag = drags and name == "theta0" and self.rng.random() < DRAG_PROBABILITY
         self._patched.clear()
         for step in range(DRAG_STEPS if drag else 1):
             if step:
@@ -183,11 +260,7 @@ class Session:
             await self._set(name, value)
 
         def done() -> bool:
-            # New orbit data was pushed (not necessarily different: on the axis, k_theta
-            # does not change the motion); for theta0 it must be the requested angle's.
-            if self.orbit_pushes == pushes:
-                return False
-            return name != "theta0" or self._readout_shows(value)
+            return self._arrived(name, value, pushes)
 
         deadline = sent + UPDATE_TIMEOUT_S
         while not done():
@@ -209,13 +282,56 @@ class Session:
         recent = [f"{t - sent:+.1f}s {events}" for t, events in self.recent]
         return f"sliders {values}; latest patches (time after the change): {recent}"
 
-    async def run(self, until: float) -> None:
+    async def run(self, until: float, profile: str = "drag") -> None:
         try:
+            if profile == "class":
+                await self.run_class(until)
+                return
             while time.perf_counter() < until:
                 await self.move()
                 await asyncio.sleep(self.rng.uniform(*THINK_S))
         except Exception as exc:  # noqa: BLE001 - counted as a session failure
             self.errors.append(f"{type(exc).__name__}: {exc}")
+
+    async def run_class(self, until: float) -> None:
+        """The classroom profile (open loop): a move every ``CLASS_GAP_S`` seconds on a
+        schedule of its own, as a student moves a slider whether or not the page has kept
+        up. A move's latency runs from its sending until data for it arrives; a move
+        overtaken by a later one before its data came (a theta0 angle never shown) counts
+        until the later one's data arrives: what the student waited for."""
+        pending: list[tuple[float, str, float, int]] = []  # (sent, slider, value, pushes)
+        next_move = time.perf_counter() + self.rng.uniform(0.0, CLASS_GAP_S[1])
+        while True:
+            now = time.perf_counter()
+            if pending:
+                done = [i for i, (_, n, v, p) in enumerate(pending) if self._arrived(n, v, p)]
+                if done:
+                    for sent, *_ in pending[:done[-1] + 1]:
+                        self.latencies.append(now - sent)
+                    del pending[:done[-1] + 1]
+            if pending and now - pending[0][0] > UPDATE_TIMEOUT_S:
+                _, name, value, _ = pending[0]
+                raise SessionFailure(f"no update within {UPDATE_TIMEOUT_S:.0f} s after "
+                                     f"{name} = {value}; " + self._diagnosis(pending[0][0]))
+            if self.errors:
+                raise SessionFailure(self.errors[-1])
+            if now >= until and not pending:
+                return
+            if now >= next_move and now < until:
+                name = self.rng.choice(list(self.sliders))
+                value = self._position(name)
+                pending.append((time.perf_counter(), name, value, self.orbit_pushes))
+                await self._set(name, value)
+                next_move += self.rng.uniform(*CLASS_GAP_S)
+                continue
+            wake = min(next_move if now < until else math.inf,
+                       (pending[0][0] + UPDATE_TIMEOUT_S) if pending else math.inf)
+            self._patched.clear()
+            try:
+                await asyncio.wait_for(self._patched.wait(),
+                                       timeout=max(0.0, min(wake - now, 1.0)))
+            except asyncio.TimeoutError:
+                pass
 
     async def close(self) -> None:
         self._closing = True
@@ -243,15 +359,17 @@ async def open_sessions(base: str, app: str, n: int, seed: int) -> list[Session]
 
 
 async def drive(base: str, app: str, n: int, duration: float, seed: int,
-                on_open=None, before_close=None) -> tuple[list[Session], float]:
-    """Open ``n`` sessions, move their sliders for ``duration`` s, close them
-    (``on_open()`` is called once all are open, ``before_close()`` just before closing)."""
+                on_open=None, before_close=None,
+                profile: str = "drag") -> tuple[list[Session], float]:
+    """Open ``n`` sessions, move their sliders for ``duration`` s in ``profile`` (a key of
+    ``PROFILES``), close them (``on_open()`` is called once all are open,
+    ``before_close()`` just before closing)."""
     sessions = await open_sessions(base, app, n, seed)
     if on_open is not None:
         on_open()
     started = time.perf_counter()
     live = [s for s in sessions if not s.errors]
-    await asyncio.gather(*(s.run(started + duration) for s in live))
+    await asyncio.gather(*(s.run(started + duration, profile) for s in live))
     elapsed = time.perf_counter() - started
     if before_close is not None:
         before_close()

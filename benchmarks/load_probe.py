@@ -27,7 +27,8 @@ CLOSED_CONNECTION_ERRORS = ("tornado.iostream.StreamClosedError",
 #: Server log lines that report a failure without a traceback.
 LOG_FAILURES = re.compile(r"dashboard update failed|Failed to run session destroy hooks|"
                           r"came back to life|dashboard worker .* stopped|"
-                          r"Error running application handler")
+                          r"Error running application handler|"
+                          r"callback .* failed with following error")
 
 
 # ------------------------------------------------------------------------------ memory
@@ -157,7 +158,14 @@ def browser_pages(url: str, n: int, duration: float, result: dict) -> None:
             for _ in range(n):
                 page = browser.new_context(viewport=VIEWPORT).new_page()
                 page.on("pageerror", lambda e: result["errors"].append(f"page error: {e}"))
-                result["open_s"].append(wait_for_app(page, url, timeout_ms=90_000))
+                opened = wait_for_app(page, url, timeout_ms=90_000)
+                for _ in range(30):  # the server's busy page: reload it, as a person would
+                    if "(busy)" not in page.title():
+                        break
+                    result["busy_pages"] = result.get("busy_pages", 0) + 1
+                    time.sleep(1.0)
+                    opened += 1.0 + wait_for_app(page, url, timeout_ms=90_000)
+                result["open_s"].append(opened)
                 pages.append((page, slider_handle(page, css_class="ctl-theta0")))
             for page, _ in pages:
                 settle(page, quiet_ms=300)

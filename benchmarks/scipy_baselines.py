@@ -1,4 +1,13 @@
-"""scipy solve_ivp baselines for the support benchmark, under a wall-time cap."""
+"""scipy solve_ivp baselines for the support benchmark, under a wall-time cap.
+
+Two right-hand sides of the same model, Eqs. (3)-(6), both with the exit event of Eq. (9):
+
+* ``lean`` (methods named ``"RK45-lean"``, ...): what a researcher would write: the five
+  motion states as scalars with ``math`` functions and the six quadratures as extra
+  states, returning a list (no numpy arrays inside the right-hand side);
+* the 11-state numpy form of ``model.reference`` (methods ``"RK45"``, ...), about four
+  times slower per call, kept for comparison with earlier reports.
+"""
 from __future__ import annotations
 
 import math
@@ -9,6 +18,7 @@ from scipy.integrate import solve_ivp
 
 from model import Params, SolverOptions
 from model.energy import elastic_energy, kinetic_energy
+from model.friction import SERIES_BELOW, series_coefficients
 from model.reference import reference_rhs
 
 from spread import repeats_for, spread
@@ -29,9 +39,44 @@ class OverBudget(Exception):
     """A scipy run went past its time limit."""
 
 
+def lean_rhs(params: Params):
+    """du/dtau with scalar arithmetic: (x, y, v_x, v_y, theta) and the quadratures
+    W, I_y, D_x, D_y, int (theta - theta0)^2, int (r - 1)^2 (Eqs. 3-6, 12, 13)."""
+    k_r, k_th, th0, lam, f_N = params.k_r, params.k_theta, params.theta0, params.lam, params.f_N
+    mu_s, A, B, zeta = params.mu_s, params.A, params.B, params.zeta
+    c0, c2, c4, c6 = series_coefficients(A, B)
+    sqrt, exp, atan, sin = math.sqrt, math.exp, math.atan, math.sin
+
+    def fun(t, u):
+        x, y, vx, vy, th = u[0], u[1], u[2], u[3], u[4]
+        r = sqrt(x * x + y * y)
+        vrx = vx - 1.0
+        s = sqrt(vrx * vrx + vy * vy)
+        z = zeta * s
+        if z < SERIES_BELOW:  # mu(s)/s by its series near s = 0 (Eq. 4)
+            z2 = z * z
+            m = mu_s * zeta * (c0 + z2 * (c2 + z2 * (c4 + z2 * c6)))
+        else:
+            m = mu_s * sin(A * atan(z - B * (z - atan(z)))) / s
+        Fx, Fy = -f_N * m * vrx, -f_N * m * vy
+        dth = th - th0
+        if r > 0.0:
+            q = (-k_r * (r - 1.0) + exp(-r / lam) / (2.0 * lam)) / r
+            p = -k_th * dth / (r * r)
+            ax, ay, om = q * x - p * y + Fx, q * y + p * x + Fy, (x * vy - y * vx) / (r * r)
+        else:
+            ax, ay, om = Fx, Fy, 0.0
+        return [vx, vy, ax, ay, om, Fx, Fy, -Fx * vrx, -Fy * vy, dth * dth, (r - 1.0) ** 2]
+
+    return fun
+
+
 def solve_scipy(params: Params, method: str, rtol: float, limit: float):
-    """solve_ivp on the reference right-hand side with the exit event of Eq. (9)."""
-    fun = reference_rhs(params)
+    """solve_ivp with the exit event of Eq. (9); ``"<method>-lean"`` uses ``lean_rhs``,
+    a plain method name the 11-state numpy right-hand side of ``model.reference``."""
+    lean = method.endswith("-lean")
+    method = method.removesuffix("-lean")
+    fun = lean_rhs(params) if lean else reference_rhs(params)
     deadline = time.perf_counter() + limit
 
     def budgeted(t, u):

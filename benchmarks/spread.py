@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import math
 import statistics
+import time
 
 
 def spread(samples) -> dict:
@@ -20,3 +21,16 @@ def repeats_for(seconds: float, min_total=0.2, lo=3, hi=15) -> int:
 def cell(median, lo, hi, fmt=lambda v: f"{v:.3g}") -> str:
     """A table cell "median [min–max]"."""
     return f"{fmt(median)} [{fmt(lo)}–{fmt(hi)}]"
+
+
+def cold_runs(fn, clear, min_total, lo=3, hi=15):
+    """``spread`` of ``fn()``'s seconds over runs each after ``clear()`` (cold caches),
+    repeated until about ``min_total`` seconds in all and at least ``lo`` times; and the
+    last value."""
+    times, value = [], None
+    while len(times) < (repeats_for(times[0], min_total, lo, hi) if times else 1):
+        clear()
+        start = time.perf_counter()
+        value = fn()
+        times.append(time.perf_counter() - start)
+    return spread(times), value

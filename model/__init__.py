@@ -3,7 +3,7 @@
 A model of elastic micropillar supports dragged by a sliding slab (Sci. Rep. 11,
 8093, 2021): one support (Eqs. 1-6), its friction and energy per contact
 (Eqs. 8-13), fixed-orientation arrays (Figs. 9-11) and uniform-orientation arrays with
-the self-consistent contact count (Figs. 5, 6, 8). Conventions are those of MODEL.md.
+the self-consistent contact count (Figs. 5, 6, 8). Conventions: docs/model.md.
 
     >>> from model import Params, REGIMES, simulate_support
     >>> res = simulate_support(REGIMES["pendulum"])

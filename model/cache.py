@@ -18,12 +18,23 @@ Guarantees:
 * on read the stored key, version and checksum are verified; a corrupted,
   truncated, unreadable or stale file is logged, deleted where possible and treated
   as a miss, so it is recomputed and never returned;
+* a cache folder is not trusted to hold what this module wrote: only a regular file is
+  read (a named pipe, a folder or a symbolic link at an entry's path is a miss, never a
+  blocked read), at most ``max_entry_bytes`` of it, and its arrays are unpacked only
+  when their declared sizes add up to at most ``max_entry_bytes`` (a few hundred kB of
+  compressed zeros cannot become hundreds of MB in memory);
 * an ``OSError`` on write (read-only folder, full disk) turns writing to that folder
   off for the rest of the process, with one logged warning instead of raising (a sweep
   makes a ``DiskCache`` per point: still one warning); a folder that cannot exist (its
-  parent is a file) is a miss on read;
+  parent is a file) is a miss on read; something other than a file in the way of one
+  entry (a folder at its path) skips that entry only;
 * the folder is bounded (``max_entries``, ``max_bytes``): the least recently used
-  entries (oldest mtime; a hit refreshes it) are evicted.
+  entries (oldest mtime; a hit refreshes it) are evicted. Each process counts its own
+  writes on top of what its last scan of the folder found, and scans (one ``stat`` per
+  entry) only when that count passes a bound; the scan then evicts down to
+  ``LOW_WATER`` of the bounds, so at most one write in ``(1 - LOW_WATER) * max_entries``
+  pays for a scan. With P processes writing one folder it may pass its bounds by the
+  other processes' unscanned writes, at most ``(P - 1) (1 - LOW_WATER)`` of them.
 
     >>> cache = DiskCache()
     >>> arrays = cache.get_or_compute(make_key("uniform_array", params=p, tol=1e-3),
@@ -31,25 +42,26 @@ Guarantees:
 """
 from __future__ import annotations
 
-import dataclasses
-import functools
-import hashlib
 import json
 import logging
+import math
 import os
 import re
 import tempfile
+import threading
 import time
 from pathlib import Path
 
 import numpy as np
+
+from .cache_entry import MAX_ENTRY_BYTES, CorruptEntry, checksum, read_regular, unpack
+from .cache_keys import APP_NAME, canonical_json, key_digest, make_key, package_version
 
 __all__ = ["DiskCache", "make_key", "key_digest", "canonical_json", "default_directory"]
 
 log = logging.getLogger(__name__)
 
 ENV_VAR = "MICROPILLAR_CACHE_DIR"
-APP_NAME = "micropillar-friction"
 _RESERVED = ("__key__", "__meta__", "__version__", "__checksum__")
 _SUFFIX, _TMP_SUFFIX = ".npz", ".tmp"
 _TMP_MAX_AGE = 3600.0  # seconds before an orphaned temporary file is removed
@@ -58,17 +70,9 @@ _TMP = re.compile(r"[0-9a-f]{16}\..*\.tmp")
 _VERSION_DIR = re.compile(r"v\d[\w.+-]*")
 #: Folders found not writable in this process: no ``DiskCache`` writes there again.
 _UNWRITABLE: set[Path] = set()
+#: After a scan, eviction leaves this fraction of ``max_entries`` and ``max_bytes``.
+LOW_WATER = 0.9
 
-
-def package_version() -> str:
-    """The version of the ``model`` package (read lazily to avoid an import cycle)."""
-    try:
-        from . import __version__
-    except ImportError:  # called while ``model`` itself is still being imported
-        from importlib.metadata import version
-
-        return version(APP_NAME)
-    return __version__
 
 
 def default_directory() -> Path:
@@ -81,83 +85,41 @@ def default_directory() -> Path:
     return Path(platformdirs.user_cache_dir(APP_NAME))
 
 
-def _jsonable(obj):
-    """JSON fallback for numpy scalars/arrays, dataclasses (Params, SolverOptions), tuples."""
-    if isinstance(obj, np.generic):
-        return obj.item()
-    if isinstance(obj, np.ndarray):
-        return obj.tolist()
-    if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
-        return {"__type__": type(obj).__name__, **dataclasses.asdict(obj)}
-    raise TypeError(f"cache key part {obj!r} of type {type(obj).__name__} is not JSON-serialisable")
+class _InTheWay(OSError):
+    """Something other than a regular file sits at an entry's path (a folder)."""
 
 
-def canonical_json(obj) -> str:
-    """Canonical JSON text: sorted keys, no spaces, NaN/inf refused."""
-    return json.dumps(obj, sort_keys=True, separators=(",", ":"), allow_nan=False,
-                      default=_jsonable)
+class _Usage:
+    """One folder's entries as this process knows them: the count and bytes found by the
+    last scan plus this process's writes since (``None`` before the first scan)."""
+
+    def __init__(self):
+        self.lock = threading.Lock()
+        self.count: int | None = None
+        self.bytes = 0
 
 
-def key_digest(key: dict, version: str) -> str:
-    """sha256 (hex) of the canonical JSON of the key together with the package version."""
-    text = canonical_json({"key": key, "version": version})
-    return hashlib.sha256(text.encode()).hexdigest()
+_USAGE: dict[Path, _Usage] = {}
+_USAGE_LOCK = threading.Lock()
 
 
-#: Subpackages that only gather, tabulate or parse what the model computed.
-PRESENTATION = ("reproduce", "cli")
-
-
-@functools.lru_cache(maxsize=1)
-def code_digest() -> str:
-    """sha256 of the model package's Python sources: results change when the code does,
-    even between released versions (an edited checkout), so the code is part of every key.
-
-    The reproduction and command-line layers (``PRESENTATION``) compute nothing that is
-    cached, so editing a report does not throw away hours of sweep points."""
-    root = Path(__file__).parent
-    h = hashlib.sha256()
-    for path in sorted(root.rglob("*.py")):
-        if path.relative_to(root).parts[0] in PRESENTATION:
-            continue
-        h.update(path.relative_to(root).as_posix().encode())
-        h.update(path.read_bytes())
-    return h.hexdigest()[:16]
-
-
-def make_key(function: str, **parts) -> dict:
-    """A cache key: the function name, its parameters and settings, the package version
-    and the digest of the model's code."""
-    return {"function": function, "version": package_version(), "code": code_digest(), **parts}
-
-
-def _checksum(arrays: dict, key_json: str, meta_json: str, version: str) -> str:
-    """sha256 over the key, metadata, version and every array's name, dtype, shape and bytes."""
-    h = hashlib.sha256()
-    for text in (key_json, meta_json, version):
-        h.update(text.encode())
-        h.update(b"\0")
-    for name in sorted(arrays):
-        a = np.ascontiguousarray(arrays[name])
-        h.update(f"{name}|{a.dtype.str}|{a.shape}|".encode())
-        h.update(a.tobytes())
-    return h.hexdigest()
-
-
-class CorruptEntry(Exception):
-    """A cache file that must not be returned (corrupted, truncated or stale)."""
+def _usage(folder: Path) -> _Usage:
+    with _USAGE_LOCK:
+        return _USAGE.setdefault(folder, _Usage())
 
 
 class DiskCache:
     """Cache of dicts of numpy arrays keyed by JSON-serialisable dicts (see module doc)."""
 
     def __init__(self, directory=None, max_entries: int = 10_000,
-                 max_bytes: int | None = 2 * 1024**3, version: str | None = None):
+                 max_bytes: int | None = 2 * 1024**3, version: str | None = None,
+                 max_entry_bytes: int = MAX_ENTRY_BYTES):
         self.version = version or package_version()
         self.root = Path(directory).expanduser() if directory is not None else default_directory()
         self.path = self.root / f"v{self.version}"
         self.max_entries = int(max_entries)
         self.max_bytes = None if max_bytes is None else int(max_bytes)
+        self.max_entry_bytes = int(max_entry_bytes)
         self.writable = self.path not in _UNWRITABLE  # off after an OSError on write
 
     def __repr__(self):
@@ -178,7 +140,7 @@ class DiskCache:
         path = self.file_for(key)
         try:
             entry = self._read(path, canonical_json(key))
-        except (FileNotFoundError, NotADirectoryError):
+        except (FileNotFoundError, NotADirectoryError):  # no entry, or no folder for it
             return None
         except Exception as exc:  # anything unreadable is discarded, never returned
             log.warning("cache file %s is invalid (%s); discarding it and recomputing", path, exc)
@@ -188,18 +150,18 @@ class DiskCache:
         return entry
 
     def _read(self, path: Path, key_json: str) -> tuple[dict, dict]:
-        with np.load(path, allow_pickle=False) as npz:
-            missing = [name for name in _RESERVED if name not in npz.files]
-            if missing:
-                raise CorruptEntry(f"missing {', '.join(missing)}")
-            stored = {name: str(npz[name][()]) for name in _RESERVED}
-            arrays = {name: npz[name] for name in npz.files if name not in _RESERVED}
+        contents = unpack(read_regular(path, self.max_entry_bytes), self.max_entry_bytes)
+        missing = [name for name in _RESERVED if name not in contents]
+        if missing:
+            raise CorruptEntry(f"missing {', '.join(missing)}")
+        stored = {name: str(contents[name][()]) for name in _RESERVED}
+        arrays = {name: a for name, a in contents.items() if name not in _RESERVED}
         if stored["__version__"] != self.version:
             raise CorruptEntry(f"stale: written by version {stored['__version__']}, "
                                f"this is {self.version}")
         if stored["__key__"] != key_json:
             raise CorruptEntry("stale: the stored key differs from the requested key")
-        check = _checksum(arrays, stored["__key__"], stored["__meta__"], stored["__version__"])
+        check = checksum(arrays, stored["__key__"], stored["__meta__"], stored["__version__"])
         if check != stored["__checksum__"]:
             raise CorruptEntry("checksum mismatch")
         return arrays, json.loads(stored["__meta__"])
@@ -214,9 +176,16 @@ class DiskCache:
         payload = self._payload(key, arrays, meta or {})
         if not self.writable:
             return False
+        if sum(a.nbytes for a in payload.values()) > self.max_entry_bytes:
+            log.warning("result of %d bytes not cached: more than max_entry_bytes = %d",
+                        sum(a.nbytes for a in payload.values()), self.max_entry_bytes)
+            return False
         try:
             self.path.mkdir(parents=True, exist_ok=True)
-            self._write_atomic(self.file_for(key), payload)
+            size = self._write_atomic(self.file_for(key), payload)
+        except _InTheWay as exc:  # this entry only: the folder itself is fine
+            log.warning("cache entry %s not written: %s", self.file_for(key), exc)
+            return False
         except OSError as exc:
             self.writable = False
             if self.path not in _UNWRITABLE:
@@ -224,8 +193,21 @@ class DiskCache:
                 log.warning("disk cache %s is not writable (%s); continuing without a disk "
                             "cache", self.path, exc)
             return False
-        self._evict()
+        usage = _usage(self.path)
+        with usage.lock:
+            if usage.count is not None:
+                usage.count += 1  # or a replaced entry: counted anyway, a scan comes sooner
+                usage.bytes += size
+            if usage.count is None or self._over(usage.count, usage.bytes, 1.0):
+                usage.count, usage.bytes = self._evict()
         return True
+
+    def _over(self, count: int, size: int, fraction: float) -> bool:
+        """True when ``count`` entries of ``size`` bytes pass ``fraction`` of the bounds
+        (of ``max_entries`` at least one entry, when it allows one)."""
+        entries = max(math.floor(fraction * self.max_entries), min(1, self.max_entries))
+        return (count > entries or
+                (self.max_bytes is not None and size > fraction * self.max_bytes))
 
     def _payload(self, key, arrays, meta) -> dict:
         arrays = {name: np.asarray(a) for name, a in arrays.items()}
@@ -235,21 +217,30 @@ class DiskCache:
             if a.dtype.hasobject:
                 raise TypeError(f"array {name!r} has dtype object; only plain numpy dtypes are cached")
         key_json, meta_json = canonical_json(key), canonical_json(meta)
-        check = _checksum(arrays, key_json, meta_json, self.version)
+        check = checksum(arrays, key_json, meta_json, self.version)
         return {**arrays, "__key__": np.array(key_json), "__meta__": np.array(meta_json),
                 "__version__": np.array(self.version), "__checksum__": np.array(check)}
 
-    def _write_atomic(self, path: Path, payload: dict) -> None:
+    def _write_atomic(self, path: Path, payload: dict) -> int:
+        """Write ``payload`` to ``path`` through a temporary file; the bytes written."""
         fd, tmp = tempfile.mkstemp(prefix=path.stem[:16] + ".", suffix=_TMP_SUFFIX, dir=self.path)
         try:
             with os.fdopen(fd, "wb") as f:
                 np.savez(f, allow_pickle=False, **payload)
                 f.flush()
                 os.fsync(f.fileno())
-            os.replace(tmp, path)
+                size = f.tell()
+            try:
+                os.replace(tmp, path)
+            except OSError as exc:
+                if os.path.lexists(path) and not path.is_file():
+                    raise _InTheWay(exc.errno, f"{exc.strerror}: something other than a file "
+                                    "is at its path") from exc
+                raise
         except BaseException:
             self._remove(Path(tmp))
             raise
+        return size
 
     def get_or_compute(self, key: dict, compute):
         """The cached arrays of ``key``, else ``compute()`` stored and returned.
@@ -286,12 +277,14 @@ class DiskCache:
                     count += self._remove(p) and p.suffix == _SUFFIX
         return count
 
-    def _evict(self) -> None:
-        """Delete least recently used entries beyond the bounds, and stale temporary files."""
+    def _evict(self) -> tuple[int, int]:
+        """Scan the folder: delete stale temporary files and, when the entries pass a bound,
+        the least recently used ones down to ``LOW_WATER`` of the bounds. Returns the
+        entries and bytes left."""
         try:
             scan = list(os.scandir(self.path))
         except OSError:
-            return
+            return 0, 0
         now, items = time.time(), []
         for e in scan:
             try:
@@ -304,11 +297,12 @@ class DiskCache:
                 items.append((st.st_mtime, st.st_size, Path(e.path)))
         items.sort()
         total = sum(size for _, size, _ in items)
-        while items and (len(items) > self.max_entries
-                         or (self.max_bytes is not None and total > self.max_bytes)):
-            _, size, path = items.pop(0)
-            self._remove(path)
-            total -= size
+        if self._over(len(items), total, 1.0):
+            while items and self._over(len(items), total, LOW_WATER):
+                _, size, path = items.pop(0)
+                self._remove(path)
+                total -= size
+        return len(items), total
 
     @staticmethod
     def _remove(path: Path) -> bool:

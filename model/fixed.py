@@ -8,7 +8,7 @@ theta0) in one compiled batch, for the polar plots of Fig. 11 and Fig. 10f.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
@@ -16,31 +16,25 @@ from .beta import solve_beta
 from .contacts import Contacts, run_contacts
 from .friction import mu0
 from .options import SolverOptions
-from .params import Params
-from .results import STATUS
+from .params import RANGES, THETA0_DEFAULT, Params, check_array_params
+from .quantities import value_of
+from .results import ArrayResult, Status
+from .validation import Interval, angles, instance, load_factor, number
 
 __all__ = ["OrientationSweep", "orientation_sweep", "fixed_orientation", "FixedArrayResult"]
 
+#: Relative width of the bracket on the self-consistent beta.
+BETA_XTOL = Interval(1e-15, 0.1)
+
 
 @dataclass(frozen=True)
-class OrientationSweep:
-    """Fixed-orientation arrays, one per theta0 (arrays over ``theta0``).
-
-    ``beta`` is the load factor each array was computed with (self-consistent or fixed);
-    ``beta_residual`` is G(beta) = beta - L0/tau_out(beta) (0 for a fixed beta).
+class OrientationSweep(ArrayResult):
+    """Fixed-orientation arrays, one per theta0: every ``ArrayResult`` field is an array
+    over ``theta0``; ``beta`` is the load factor each array was computed with
+    (self-consistent or fixed). The per-contact quantities are in ``contacts``.
     """
 
-    params: Params
     theta0: np.ndarray
-    FTx_over_mu0FN: np.ndarray
-    FTy_over_mu0FN: np.ndarray
-    Dy_over_Dx: np.ndarray
-    Nc_over_Nc0: np.ndarray
-    work_split: dict
-    dtheta_rms: np.ndarray
-    dr_rms: np.ndarray
-    beta: np.ndarray
-    beta_residual: np.ndarray
     beta_note: np.ndarray  # "", "capped at 1" or "no root: tau_out jumps"
     contacts: Contacts
     beta_iterations: int = 0
@@ -59,25 +53,16 @@ def orientation_sweep(params: Params, theta0, beta="self", rtol: float = 1e-6,
 
     ``beta="self"`` (default) solves beta = L0/tau_out(beta) for each orientation with a
     bracketed root finder; a number uses that fixed load factor (1 = no correction).
+    ``params`` gives the springs, load and friction law: its theta0 must be left at the
+    default and its beta at 1 (or equal to ``beta``); ``ValueError`` otherwise.
     """
     start = time.perf_counter()
-    if not isinstance(params, Params):
-        raise TypeError(f"params must be a model.Params, not {type(params).__name__}")
-    try:
-        theta0 = shown = np.atleast_1d(np.asarray(theta0, dtype=float))
-    except (TypeError, ValueError, OverflowError):
-        theta0, shown = np.array([]), theta0
-    if theta0.ndim != 1 or theta0.size == 0 or not np.all(np.isfinite(theta0)):
-        raise ValueError(f"theta0={shown!r} must be a non-empty 1-D array of finite angles")
-    for t in (theta0.min(), theta0.max()):
-        params.replace(theta0=t)  # range check with the message of Params
-    if isinstance(beta_xtol, bool) or not (isinstance(beta_xtol, (int, float))
-                                           and 1e-15 <= beta_xtol <= 0.1):
-        raise ValueError(f"beta_xtol={beta_xtol!r} must be a number in [1e-15, 0.1]")
+    instance("params", params, Params)
+    theta0 = angles("theta0", theta0, RANGES["theta0"][0])
+    check_array_params(params, "orientation_sweep", load_factor("beta", beta), uses_theta0=False)
+    beta_xtol = number("beta_xtol", beta_xtol, BETA_XTOL, "bracket width beta_xtol")
     options = SolverOptions(rtol=rtol, atol=atol, method=method)
-    if isinstance(beta, str):
-        if beta != "self":
-            raise ValueError(f"beta={beta!r} must be 'self' or a number in (0, 1]")
+    if load_factor("beta", beta) == "self":
         betas, residual, note, iterations = _self_consistent(params, theta0, options, beta_xtol)
     else:
         params = params.replace(beta=beta)
@@ -116,49 +101,47 @@ def _sweep_result(params, theta0, betas, residual, note, iterations, c, seconds)
 
 
 @dataclass(frozen=True)
-class FixedArrayResult:
-    """A fixed-orientation array: one ``OrientationSweep`` row as scalars."""
+class FixedArrayResult(ArrayResult):
+    """A fixed-orientation array: one ``OrientationSweep`` row as scalars, with the
+    quantities of its one contact (r_min, r_max, pivot_approach, energy_residual)."""
 
-    params: Params
-    FTx_over_mu0FN: float
-    FTy_over_mu0FN: float
-    Dy_over_Dx: float
-    Nc_over_Nc0: float
-    work_split: dict
-    dtheta_rms: float
-    dr_rms: float
-    beta: float
-    beta_residual: float
     beta_iterations: int
     success: bool
     message: str
     r_min: float
     pivot_approach: bool
     energy_residual: float
-
-    def to_dict(self) -> dict:
-        d = {k: getattr(self, k) for k in self.__dataclass_fields__ if k != "params"}
-        d["params"] = self.params.as_dict()
-        return d
+    r_max: float
 
 
 def fixed_orientation(params: Params, beta="self", rtol: float = 1e-6,
                       atol: float | None = None, method: str = "auto") -> FixedArrayResult:
-    """A fixed-orientation array at ``params.theta0`` (Figs. 9-11); see ``orientation_sweep``."""
-    if not isinstance(params, Params):
-        raise TypeError(f"params must be a model.Params, not {type(params).__name__}")
-    s = orientation_sweep(params, [params.theta0], beta=beta, rtol=rtol, atol=atol, method=method)
+    """A fixed-orientation array at ``params.theta0`` (Figs. 9-11); see ``orientation_sweep``.
+
+    ``params.beta`` must be 1 or equal ``beta`` (the array's load factor is ``beta``).
+    """
+    instance("params", params, Params)
+    check_array_params(params, "fixed_orientation", load_factor("beta", beta), uses_theta0=True)
+    s = orientation_sweep(params.replace(theta0=THETA0_DEFAULT), [params.theta0], beta=beta,
+                          rtol=rtol, atol=atol, method=method)
     c = s.contacts
     status = int(c.status[0])
-    message = STATUS.get(status, str(status))
+    message = Status(status).message if status in set(Status) else str(status)
     if s.beta_note[0]:
         message += f"; self-consistent beta {s.beta_note[0]}"
-    return FixedArrayResult(
-        params=params.replace(beta=float(s.beta[0])),
-        FTx_over_mu0FN=float(s.FTx_over_mu0FN[0]), FTy_over_mu0FN=float(s.FTy_over_mu0FN[0]),
-        Dy_over_Dx=float(s.Dy_over_Dx[0]), Nc_over_Nc0=float(s.Nc_over_Nc0[0]),
-        work_split={k: float(v[0]) for k, v in s.work_split.items()},
-        dtheta_rms=float(s.dtheta_rms[0]), dr_rms=float(s.dr_rms[0]), beta=float(s.beta[0]),
-        beta_residual=float(s.beta_residual[0]), beta_iterations=s.beta_iterations,
-        success=bool(s.success[0]), message=message, r_min=float(c.r_min[0]),
-        pivot_approach=bool(c.pivot_approach[0]), energy_residual=float(c.energy_residual[0]))
+    # Every other field is the sweep's (or its contact's) first row, read by name.
+    row = {name: _first(value_of(s, name)) for name in _ROW_FIELDS}
+    return FixedArrayResult(params=params.replace(beta=row["beta"]), message=message, **row)
+
+
+def _first(value):
+    """Row 0 of a per-orientation value as plain Python (dicts of arrays included)."""
+    if isinstance(value, np.ndarray):
+        return value[0].item()
+    if isinstance(value, dict):
+        return {k: _first(v) for k, v in value.items()}
+    return value
+
+
+#: The fields of a fixed array read from its sweep by name (params and message are its own).
+_ROW_FIELDS = tuple(f.name for f in fields(FixedArrayResult) if f.name not in ("params", "message"))

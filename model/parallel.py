@@ -31,18 +31,23 @@ class SweepCancelled(Exception):
 
 
 def run_points(func, tasks, workers: int = 1, scheduler=None, progress=None,
-               cancel=None) -> list:
+               cancel=None, sizes=None) -> list:
     """``[func(t) for t in tasks]``, on ``workers`` local processes or on ``scheduler``.
 
     ``func`` must be a module-level function (it is pickled by reference); ``scheduler``
     is a ``dask.distributed.Client`` or the address of a scheduler ("tcp://host:8786").
+    ``sizes`` (one int per task, e.g. the points of a chain of points) makes
+    ``progress`` count those instead of tasks.
     """
-    out = _Rows(len(tasks), progress, cancel)
+    out = _Rows(len(tasks), progress, cancel, sizes)
     out.check()
+    # Tasks that are chains of points already carry enough work each: sent one by one,
+    # the pool balances them (a slow chain does not hold back three others).
+    one_each = sizes is not None
     if scheduler is not None:
-        _run_dask(func, tasks, scheduler, out)
+        _run_dask(func, tasks, scheduler, out, one_each)
     elif workers > 1:
-        _run_pool(func, tasks, workers, out)
+        _run_pool(func, tasks, workers, out, one_each)
     else:
         for i, task in enumerate(tasks):
             out.check()
@@ -57,25 +62,27 @@ def _run_chunk(func, tasks) -> list:
 class _Rows:
     """Results in task order, with the progress callback and the cancel check."""
 
-    def __init__(self, total, progress, cancel):
-        self.rows, self.done, self.total = [None] * total, 0, total
+    def __init__(self, total, progress, cancel, sizes=None):
+        self.sizes = [1] * total if sizes is None else list(sizes)
+        self.rows, self.done, self.total = [None] * total, 0, sum(self.sizes)
         self.progress, self.cancel = progress, cancel
 
     def add(self, indices, rows) -> None:
         for i, row in zip(indices, rows):
             self.rows[i] = row
-            self.done += 1
-            if self.progress is not None:
-                self.progress(self.done, self.total)
+            for _ in range(self.sizes[i]):  # one call per point, as documented
+                self.done += 1
+                if self.progress is not None:
+                    self.progress(self.done, self.total)
 
     def check(self) -> None:
         if self.cancel is not None and self.cancel.is_set():
             raise SweepCancelled(self.done, self.total)
 
 
-def _chunks(total: int, slots: int) -> list:
-    """Task indices in about four strided chunks per worker slot."""
-    count = min(total, 4 * slots)
+def _chunks(total: int, slots: int, one_each: bool = False) -> list:
+    """Task indices in about four strided chunks per worker slot (or one per task)."""
+    count = total if one_each else min(total, 4 * slots)
     return [list(range(j, total, count)) for j in range(count)]
 
 
@@ -98,12 +105,12 @@ def _quiet_worker() -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
-def _run_pool(func, tasks, workers, out) -> None:
+def _run_pool(func, tasks, workers, out, one_each=False) -> None:
     pool = ProcessPoolExecutor(workers, mp_context=_pool_context(func.__module__),
                                initializer=_quiet_worker)
     try:
         futures = {pool.submit(_run_chunk, func, [tasks[i] for i in idx]): idx
-                   for idx in _chunks(len(tasks), workers)}
+                   for idx in _chunks(len(tasks), workers, one_each)}
         pending = set(futures)
         while pending:
             out.check()
@@ -128,7 +135,7 @@ def _abandon(pool) -> None:
 
 # --------------------------------------------------------------------------- dask
 
-def _run_dask(func, tasks, scheduler, out) -> None:
+def _run_dask(func, tasks, scheduler, out, one_each=False) -> None:
     """The chunks on a dask.distributed cluster (imported only here: optional)."""
     try:
         import distributed
@@ -144,7 +151,7 @@ def _run_dask(func, tasks, scheduler, out) -> None:
         raise ValueError(f"scheduler={scheduler!r} must be a dask.distributed Client or an "
                          "address like tcp://host:8786")
     try:
-        _map_dask(distributed, client or scheduler, func, tasks, out)
+        _map_dask(distributed, client or scheduler, func, tasks, out, one_each)
     finally:
         if client is not None:
             client.close()
@@ -160,9 +167,9 @@ def _check_address(distributed, address: str) -> None:
                          f"tcp://host:8786 ({error})") from None
 
 
-def _map_dask(distributed, client, func, tasks, out) -> None:
+def _map_dask(distributed, client, func, tasks, out, one_each=False) -> None:
     slots = max(1, sum(client.nthreads().values()))
-    chunks = _chunks(len(tasks), slots)
+    chunks = _chunks(len(tasks), slots, one_each)
     futures = client.map(_run_chunk, [func] * len(chunks),
                          [[tasks[i] for i in idx] for idx in chunks], pure=False)
     index = {future.key: idx for future, idx in zip(futures, chunks)}

@@ -11,43 +11,37 @@ from dataclasses import asdict, dataclass, fields, replace
 
 import numpy as np
 
-__all__ = ["Params", "REGIMES", "DEFAULTS", "rest_positions"]
+from .validation import BETA, Interval, number
 
-#: Constants fixed by MODEL.md (friction law Eq. 4, repulsion Eq. 3, slab length).
+__all__ = ["Params", "REGIMES", "DEFAULTS", "RANGES", "rest_positions", "check_array_params"]
+
+#: Constants of the friction law (Eq. 4), the repulsion (Eq. 3) and the slab length (Eq. 9);
+#: docs/model.md, "Defaults".
 DEFAULTS = dict(mu_s=1.3, A=1.44, B=-20.0, zeta=10.0, lam=0.05, L0=10.0)
 
-# (lower, upper, lower_open, upper_open, meaning) for every field.
-_RANGES = {
-    "k_r": (0.0, 1e6, True, False, "radial stiffness k_r"),
-    "k_theta": (0.0, 1e6, True, False, "torsional stiffness k_theta"),
-    "F_N": (0.0, 1e3, True, False, "normal load F_N"),
-    "theta0": (-2 * math.pi, 2 * math.pi, False, False, "rest orientation theta0 [rad]"),
-    "beta": (0.0, 1.0, True, False, "load factor beta = N_c0/N_c"),
-    "mu_s": (0.0, 100.0, True, False, "static friction coefficient mu_s"),
-    "A": (0.0, 100.0, True, False, "friction-law shape A"),
-    "B": (-1e4, 1e4, False, False, "friction-law shape B"),
-    "zeta": (0.0, 1e6, True, False, "friction-law velocity scale zeta = V0/V_s"),
-    "lam": (1e-4, 0.5, False, False, "repulsion range lambda"),
-    "L0": (0.0, 1e6, True, False, "slab length L0"),
+#: (interval, meaning) of every field: what the model accepts (Eqs. 3-5).
+RANGES = {
+    "k_r": (Interval(0.0, 1e6, lo_open=True), "radial stiffness k_r"),
+    "k_theta": (Interval(0.0, 1e6, lo_open=True), "torsional stiffness k_theta"),
+    "F_N": (Interval(0.0, 1e3, lo_open=True), "normal load F_N"),
+    "theta0": (Interval(-2 * math.pi, 2 * math.pi), "rest orientation theta0 [rad]"),
+    "beta": (BETA, "load factor beta = N_c0/N_c"),
+    "mu_s": (Interval(0.0, 100.0, lo_open=True), "static friction coefficient mu_s"),
+    "A": (Interval(0.0, 100.0, lo_open=True), "friction-law shape A"),
+    "B": (Interval(-1e4, 1e4), "friction-law shape B"),
+    "zeta": (Interval(0.0, 1e6, lo_open=True), "friction-law velocity scale zeta = V0/V_s"),
+    "lam": (Interval(1e-4, 0.5), "repulsion range lambda"),
+    "L0": (Interval(0.0, 1e6, lo_open=True), "slab length L0"),
 }
 
 
+#: The rest orientation of ``Params`` when none is given (the paper's Figs. 6, 7).
+THETA0_DEFAULT = math.pi / 2
+
+
 def _check(name: str, value) -> float:
-    lo, hi, lo_open, hi_open, meaning = _RANGES[name]
-    try:
-        if isinstance(value, (bool, np.bool_, str, bytes)):  # float() would accept these
-            raise TypeError
-        x = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name}={value!r} is not a number; {meaning} must be a real number") from None
-    except OverflowError:  # an int beyond the float range
-        x = math.inf
-    lo_ok = x > lo if lo_open else x >= lo
-    hi_ok = x < hi if hi_open else x <= hi
-    if not (math.isfinite(x) and lo_ok and hi_ok):
-        interval = f"{'(' if lo_open else '['}{lo:g}, {hi:g}{')' if hi_open else ']'}"
-        raise ValueError(f"{name}={value!r} is invalid: {meaning} must be finite and in {interval}")
-    return x
+    interval, meaning = RANGES[name]
+    return number(name, value, interval, meaning)
 
 
 @dataclass(frozen=True)
@@ -60,9 +54,12 @@ class Params:
     F_N : normal load on the slab per support at rest (F~_N); each support carries
         f_N = beta * F_N.
     theta0 : rest orientation of the support [rad], measured from the sliding
-        direction +x.
-    beta : N_c0 / N_c, the load correction for supports dragged beyond L0
-        (1 = no correction; the array functions solve it self-consistently).
+        direction +x (used by ``simulate_support`` and ``fixed_orientation``; arrays over
+        theta0 take their orientations as an argument and refuse another theta0 here).
+    beta : N_c0 / N_c, the load correction for supports dragged beyond L0 (1 = no
+        correction). One support uses it; an array's load factor is the ``beta``
+        argument of the array function ("self" solves it), which refuses a different
+        value here rather than ignoring it (``check_array_params``).
     mu_s, A, B, zeta : friction law, Eq. (4), with zeta = V0/V_s.
     lam : range of the repulsion phi(r) = exp(-r/lam) / (2 lam), Eq. (3).
     L0 : slab length; a contact ends when the slab has slid L0 over the support (Eq. 9).
@@ -71,7 +68,7 @@ class Params:
     k_r: float
     k_theta: float
     F_N: float = 1.0
-    theta0: float = math.pi / 2
+    theta0: float = THETA0_DEFAULT
     beta: float = 1.0
     mu_s: float = DEFAULTS["mu_s"]
     A: float = DEFAULTS["A"]
@@ -94,7 +91,7 @@ class Params:
         """(cos theta0, sin theta0), exactly on the x-axis when theta0 is a multiple of pi.
 
         sin(float(pi)) = 1.2e-16 would start the mass a hair off the axis; the exact
-        mirror-symmetric start keeps y = 0 for all time (MODEL.md, "Hard cases").
+        mirror-symmetric start keeps y = 0 for all time (docs/model.md, "Hard cases").
         """
         x, y = rest_positions(self.theta0)
         return float(x), float(y)
@@ -114,6 +111,26 @@ class Params:
         except KeyError:
             raise ValueError(f"regime={name!r} is unknown; choose one of {sorted(REGIMES)}") from None
         return base.replace(**changes)
+
+
+def check_array_params(params: Params, function: str, beta, uses_theta0: bool) -> None:
+    """Refuse the fields of ``params`` that the array function ``function`` would ignore.
+
+    An array's load factor is its ``beta`` argument (``"self"`` or a number), so a
+    ``params.beta`` other than 1 must agree with it; an array over theta0 (uniform, or a
+    sweep given its theta0 values) has no use for ``params.theta0``, which must then be
+    left at its default. Raises ``ValueError`` naming the field and the fix.
+    """
+    if not uses_theta0 and params.theta0 != THETA0_DEFAULT:
+        raise ValueError(
+            f"theta0={params.theta0!r} is not used by {function}, which covers its own "
+            f"orientations; leave params.theta0 at its default pi/2 "
+            f"(params.replace(theta0=math.pi / 2))")
+    if params.beta != 1.0 and (isinstance(beta, str) or float(beta) != params.beta):
+        raise ValueError(
+            f"beta={params.beta!r} in params would be ignored by {function}(beta={beta!r}): "
+            f"an array's load factor is its beta argument; pass beta={params.beta!r} or "
+            f"leave params.beta at 1")
 
 
 def rest_positions(theta0):

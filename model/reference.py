@@ -11,6 +11,7 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from ._kernel import slots
 from .friction import mu_over_s
 from .options import SolverOptions
 from .params import Params
@@ -45,8 +46,8 @@ class _Budget(Exception):
 def integrate_reference(params: Params, options: SolverOptions, dense: bool = False):
     """Integrate one contact with DOP853 until s(tau) = L0 (Eq. 9).
 
-    Returns (status, t_out, y_out, stats, r_min, sol) with the status codes of
-    ``model.results.STATUS``; ``sol`` is scipy's dense output (or None).
+    Returns (status, t_out, y_out, stats, r_min, r_max, sol) with the status codes of
+    ``model.results.Status``; ``sol`` is scipy's dense output (or None).
     """
     fun = reference_rhs(params)
     budget = 13 * options.max_steps  # DOP853 uses ~12 evaluations per step
@@ -71,10 +72,12 @@ def integrate_reference(params: Params, options: SolverOptions, dense: bool = Fa
         sol = solve_ivp(counted, (0.0, options.tau_max), u0, method="DOP853", rtol=options.rtol,
                         atol=options.atol, events=exit_event, dense_output=dense)
     except _Budget:
-        return 1, math.nan, np.full(11, np.nan), {"n_rhs": calls[0]}, math.nan, None
+        return (slots.STEP_BUDGET, math.nan, np.full(11, np.nan), {"n_rhs": calls[0]}, math.nan,
+                math.nan, None)
     stats = {"n_steps": int(sol.t.size - 1), "n_rhs": int(sol.nfev)}
-    r_min = float(np.min(np.hypot(sol.y[0], sol.y[1])))
+    r = np.hypot(sol.y[0], sol.y[1])
+    r_min, r_max = float(np.min(r)), float(np.max(r))
     if sol.status == 1:
-        return 0, float(sol.t_events[0][0]), sol.y_events[0][0], stats, r_min, sol.sol
-    status = 2 if sol.status == 0 else 3
-    return status, float(sol.t[-1]), sol.y[:, -1], stats, r_min, sol.sol
+        return slots.OK, float(sol.t_events[0][0]), sol.y_events[0][0], stats, r_min, r_max, sol.sol
+    status = slots.TIME_BUDGET if sol.status == 0 else slots.STEP_UNDERFLOW
+    return status, float(sol.t[-1]), sol.y[:, -1], stats, r_min, r_max, sol.sol

@@ -1,15 +1,17 @@
 """The regime map of Fig. 5: uniform arrays over a log grid of (k_r, k_theta).
 
-A precomputed 24 x 24 map at F_N = 1 ships inside the package
-(``model/data/regime_map_FN1.npz``) so it can be shown instantly::
+Precomputed 24 x 24 maps (tol 1e-3, self-consistent beta, paper average Eq. 10) at
+the loads ``SHIPPED_LOADS`` = F_N 0.1, 0.3, 1, 3, 10 ship inside the package
+(``model/data/regime_map_FN<F_N>.npz``) so they can be shown instantly::
 
     >>> from model.shipped_map import load_regime_map
-    >>> m = load_regime_map()
-    >>> m.FTx_over_mu0FN[i, j]     # at k_r = m.k_r[i], k_theta = m.k_theta[j]
+    >>> m = load_regime_map()          # F_N = 1
+    >>> m = load_regime_map(F_N=3)
+    >>> m.FTx_over_mu0FN[i, j]         # at k_r = m.k_r[i], k_theta = m.k_theta[j]
 
-Regenerate it (prints progress, the time taken and the largest quadrature error)::
+Regenerate one (prints progress, the time taken and the largest quadrature error)::
 
-    python -m model.shipped_map --n 24 --workers 2 [--out PATH]
+    python -m model.shipped_map --n 24 --workers 2 --F-N 3 [--out PATH]
 """
 from __future__ import annotations
 
@@ -25,12 +27,15 @@ from pathlib import Path
 
 import numpy as np
 
+from .controls import STIFFNESS_RANGE
+
 __all__ = ["RegimeMap", "load_regime_map", "compute_regime_map", "save_regime_map",
-           "packaged_path", "GRID_RANGE"]
+           "packaged_path", "GRID_RANGE", "SHIPPED_LOADS"]
 
 #: Range of both stiffness axes (Fig. 5), sampled logarithmically.
-GRID_RANGE = (0.01, 3.0)
-PACKAGED_FILE = "regime_map_FN1.npz"
+GRID_RANGE = STIFFNESS_RANGE.bounds
+#: Loads F_N of the maps shipped in model/data.
+SHIPPED_LOADS = (0.1, 0.3, 1.0, 3.0, 10.0)
 #: Quantities taken from each ``UniformArrayResult`` (one (n, m) array each).
 QUANTITIES = ("FTx_over_mu0FN", "FTx_over_mu0FN_duration", "Dy_over_Dx", "Nc_over_Nc0")
 
@@ -71,14 +76,22 @@ class RegimeMap:
         return out
 
 
-def packaged_path() -> Path:
-    """Path of the map shipped with the package."""
-    return Path(str(resources.files("model") / "data" / PACKAGED_FILE))
+def packaged_path(F_N: float = 1.0) -> Path:
+    """Path of the map shipped with the package for the load ``F_N`` (one of
+    ``SHIPPED_LOADS``)."""
+    matches = [f for f in SHIPPED_LOADS if math.isclose(f, F_N, rel_tol=1e-9)]
+    if not matches:
+        raise ValueError(f"F_N={F_N!r} has no shipped regime map; shipped loads are "
+                         f"{', '.join(f'{f:g}' for f in SHIPPED_LOADS)} (compute others with "
+                         "model.sweeps.regime_map)")
+    return Path(str(resources.files("model") / "data" / f"regime_map_FN{matches[0]:g}.npz"))
 
 
-def load_regime_map(path=None) -> RegimeMap:
-    """Read a regime map (default: the one shipped with the package)."""
-    path = packaged_path() if path is None else Path(path)
+def load_regime_map(path=None, F_N: float | None = None) -> RegimeMap:
+    """Read a regime map: ``path``, or the one shipped for ``F_N`` (default F_N = 1)."""
+    if path is not None and F_N is not None:
+        raise ValueError("give path or F_N, not both")
+    path = packaged_path(1.0 if F_N is None else F_N) if path is None else Path(path)
     with np.load(path, allow_pickle=False) as npz:
         data = {name: npz[name] for name in npz.files}
     meta = json.loads(str(data.pop("metadata")[()]))
@@ -170,12 +183,13 @@ def main(argv=None) -> int:
     ap.add_argument("--F-N", dest="F_N", type=float, default=1.0, help="normal load (default 1)")
     ap.add_argument("--tol", type=float, default=1e-3, help="quadrature tolerance (default 1e-3)")
     ap.add_argument("--workers", type=int, default=1, help="processes (default 1)")
-    ap.add_argument("--out", default=None, help="output .npz (default: the packaged map)")
+    ap.add_argument("--out", default=None,
+                    help="output .npz (default: the packaged map of that load)")
     args = ap.parse_args(argv)
     start = time.perf_counter()
     m = compute_regime_map(n=args.n, F_N=args.F_N, tol=args.tol, workers=args.workers,
                            progress=_progress_printer(start))
-    out = save_regime_map(m, args.out or packaged_path())
+    out = save_regime_map(m, args.out or packaged_path(args.F_N))
     meta = m.metadata
     print(f"wrote {out}")
     print(f"{m.shape[0]}x{m.shape[1]} points in {meta['seconds']:.1f} s with {args.workers} worker(s)")

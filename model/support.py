@@ -7,12 +7,16 @@ from functools import lru_cache
 import numpy as np
 from scipy.interpolate import CubicHermiteSpline
 
-from .contacts import STAT_NAMES, Contacts, exit_quantities, run_contacts
+from . import _kernel
+from ._kernel import N_REC
+from .contacts import PIVOT_RADIUS_OVER_LAMBDA, STAT_NAMES, exit_quantities
+from .energy import elastic_energy, kinetic_energy
 from .friction import mu_over_s
 from .options import SolverOptions
 from .params import Params
 from .reference import integrate_reference
-from .results import ACCURACY_FACTOR, STATUS, SupportResult, TimeSeries
+from .results import ACCURACY_FACTOR, Status, SupportResult, TimeSeries
+from .validation import instance, whole
 
 __all__ = ["simulate_support"]
 
@@ -38,12 +42,8 @@ def simulate_support(params: Params, rtol: float = 1e-6, atol: float | None = No
     SupportResult; call ``.check()`` to raise ``IntegrationError`` on failure.
     Results are cached (LRU) by parameters and settings; arrays are read-only.
     """
-    if not isinstance(params, Params):
-        raise TypeError(f"params must be a model.Params, not {type(params).__name__}")
-    if not (isinstance(samples, (int, float, np.integer, np.floating))
-            and not isinstance(samples, bool) and 0 <= samples <= 10**6
-            and float(samples).is_integer()):
-        raise ValueError(f"samples={samples!r} must be a whole number in [0, 1e6]")
+    instance("params", params, Params)
+    samples = whole("samples", samples, 0, 10**6)
     options = SolverOptions(rtol=rtol, atol=atol, method=method, max_steps=max_steps,
                             tau_max=tau_max)
     return _simulate(params, options, int(samples))
@@ -52,17 +52,37 @@ def simulate_support(params: Params, rtol: float = 1e-6, atol: float | None = No
 @lru_cache(maxsize=1024)
 def _simulate(params: Params, options: SolverOptions, samples: int) -> SupportResult:
     if options.method == "reference":
-        status, t, y, stats, r_min, sol = integrate_reference(params, options, dense=samples > 0)
+        status, t, y, stats, r_min, r_max, sol = integrate_reference(params, options,
+                                                                     dense=samples > 0)
         stats["method"] = "reference (scipy DOP853)"
-        row = exit_quantities(params, options, np.array([params.theta0]), [status], [t], [y],
-                              np.zeros((1, len(STAT_NAMES)), np.int64), [r_min])
+        c = exit_quantities(params, options, np.array([params.theta0]), [status], [t], [y],
+                            np.zeros((1, len(STAT_NAMES)), np.int64), [r_min], r_max=[r_max])
         series = _series_from_dense(params, sol, t, samples) if samples and status == 0 else None
-    else:
-        row, nodes = run_contacts(params, params.theta0, options, record=samples > 0)
-        stats = {k: int(v) for k, v in zip(STAT_NAMES, row.stats[0])}
-        stats["method"] = _method_used(options.method, stats)
-        series = _series_from_nodes(params, nodes, samples) if samples else None
-    return _assemble(row, stats, series)
+        return _assemble(params, options, int(c.status[0]), float(c.t_out[0]), c.state_out[0],
+                         c.F_x[0], c.F_y[0], c.W[0], c.D_x[0], c.D_y[0], c.U_el[0], c.K[0],
+                         c.energy_residual[0], c.dtheta_rms[0], c.dr_rms[0], c.r_min[0],
+                         c.r_max[0], stats, series)
+    # One row straight through the kernel: the per-call cost of a single contact is
+    # mostly Python (a few us per array built), so the ``Contacts`` table is skipped.
+    Y0, P = _start(params)
+    status, t, Y, D, st, r_min, r_max, nodes, n_nodes = _kernel.integrate_batch(
+        Y0, P, options.rtol, options.atol, _kernel.METHOD_CODES[options.method],
+        options.max_steps, options.tau_max, samples > 0)
+    stats = dict(zip(STAT_NAMES, st[0].tolist()))
+    stats["method"] = _method_used(options.method, stats)
+    series = _series_from_nodes(params, nodes[:n_nodes], samples) if samples else None
+    y, (F_x, F_y, U_el, K, residual, dtheta_rms, dr_rms, r_out) = Y[0], D[0].tolist()
+    S = _kernel.slots
+    return _assemble(params, options, int(status[0]), float(t[0]), y[:S.N_MOTION], F_x, F_y,
+                     float(y[S.W]), float(y[S.D_X]), float(y[S.D_Y]), U_el, K, residual,
+                     dtheta_rms, dr_rms, min(float(r_min[0]), r_out), max(float(r_max[0]), r_out),
+                     stats, series)
+
+
+@lru_cache(maxsize=1024)
+def _start(params: Params):
+    """Kernel start row and parameter row of ``params`` (private: never written to)."""
+    return _kernel.initial_state(params)[None], _kernel.pack(params)[None]
 
 
 def _method_used(method: str, stats: dict) -> str:
@@ -73,25 +93,22 @@ def _method_used(method: str, stats: dict) -> str:
     return "auto (" + " + ".join(used) + f", {stats['n_switches']} switches)"
 
 
-def _assemble(row: Contacts, stats: dict, series) -> SupportResult:
-    """The one-contact result from a one-row ``Contacts``."""
-    status = int(row.status[0])
-    r_min = float(row.r_min[0])
-    approach = bool(row.pivot_approach[0])
-    state_out = row.state_out[0].copy()
-    F_mean = np.array([row.F_x[0], row.F_y[0]])
+def _assemble(params, options, status, t_out, state_out, F_x, F_y, W, D_x, D_y, U_el, K,
+              residual, dtheta_rms, dr_rms, r_min, r_max, stats, series) -> SupportResult:
+    """The one-contact result from its exit quantities."""
+    pivot_radius = PIVOT_RADIUS_OVER_LAMBDA * params.lam
+    approach = bool(r_min < pivot_radius)
+    state_out = np.array(state_out, dtype=float)
+    F_mean = np.array([F_x, F_y], dtype=float)
     for a in (F_mean, state_out):
         a.flags.writeable = False
     result = SupportResult(
-        params=row.params, options=row.options, success=status == 0, status=status,
-        message=_message(status, float(row.t_out[0]), r_min, approach, row.pivot_radius,
-                         row.options),
-        t_out=float(row.t_out[0]), state_out=state_out, F_mean=F_mean,
-        W=float(row.W[0]), D_x=float(row.D_x[0]), D_y=float(row.D_y[0]),
-        U_el=float(row.U_el[0]), K=float(row.K[0]),
-        energy_residual=float(row.energy_residual[0]),
-        dtheta_rms=float(row.dtheta_rms[0]), dr_rms=float(row.dr_rms[0]),
-        r_min=r_min, pivot_approach=approach, pivot_radius=row.pivot_radius,
+        params=params, options=options, success=status == Status.OK, status=status,
+        message=_message(status, t_out, r_min, approach, pivot_radius, options),
+        t_out=t_out, state_out=state_out, F_mean=F_mean, W=float(W), D_x=float(D_x),
+        D_y=float(D_y), U_el=float(U_el), K=float(K), energy_residual=float(residual),
+        dtheta_rms=float(dtheta_rms), dr_rms=float(dr_rms), r_min=float(r_min),
+        r_max=float(r_max), pivot_approach=approach, pivot_radius=pivot_radius,
         stats=stats, series=series)
     if result.success and not result.accurate:
         warning = (f"; warning: the energy balance misses by {result.relative_energy_residual:.1e}"
@@ -103,27 +120,33 @@ def _assemble(row: Contacts, stats: dict, series) -> SupportResult:
 
 
 def _message(status, t, r_min, approach, pivot_radius, options) -> str:
-    text = STATUS.get(status, f"unknown status {status}")
-    if status == 0:
-        text += f" at tau_out = {t:.6g}"
-    elif status == 1:
-        text += f" (max_steps = {options.max_steps}, tau = {t:.6g}); raise max_steps or loosen rtol"
-    elif status == 2:
-        text += f" (tau_max = {options.tau_max:g}); raise tau_max"
-    elif status in (3, 4):
-        text += f" at tau = {t:.6g}; try method='implicit' or a looser rtol"
+    """The status's message with where it happened and its remedy (``Status``)."""
+    try:
+        code = Status(status)
+    except ValueError:
+        return f"unknown status {status}"
+    text = code.message + {
+        Status.OK: f" at tau_out = {t:.6g}",
+        Status.STEP_BUDGET: f" (max_steps = {options.max_steps}, tau = {t:.6g})",
+        Status.TIME_BUDGET: f" (tau_max = {options.tau_max:g})",
+    }.get(code, f" at tau = {t:.6g}")
+    if code.remedy:
+        text += "; " + code.remedy
     if approach:
         text += (f"; the mass was driven into the region of its pivot (r_min = {r_min:.3g} "
                  f"< {pivot_radius:.3g})")
     return text
 
 
-def _series(params, tau, x, y, vx, vy, theta) -> TimeSeries:
+def _series(params, tau, x, y, vx, vy, theta, W, D_x, D_y) -> TimeSeries:
+    """Histories from the sampled motion and cumulative quadratures (Eqs. 4, 12, 13)."""
     vrx = vx - 1.0
     m = mu_over_s(np.hypot(vrx, vy), params)
     Fx, Fy = -m * vrx, -m * vy
-    arrays = dict(tau=tau, x=x, y=y, v_x=vx, v_y=vy, theta=theta, r=np.hypot(x, y),
-                  F_x=Fx, F_y=Fy, F_abs=np.hypot(Fx, Fy))
+    r = np.hypot(x, y)
+    arrays = dict(tau=tau, x=x, y=y, v_x=vx, v_y=vy, theta=theta, r=r,
+                  F_x=Fx, F_y=Fy, F_abs=np.hypot(Fx, Fy), W=W, D_x=D_x, D_y=D_y,
+                  U_el=elastic_energy(params, r, theta), K=kinetic_energy(vx, vy))
     for a in arrays.values():
         a.flags.writeable = False
     return TimeSeries(**arrays)
@@ -139,7 +162,8 @@ def _series_from_nodes(params, nodes, samples) -> TimeSeries | None:
     if nodes.shape[0] < 2:
         return None
     tau = np.linspace(0.0, nodes[-1, 0], samples)
-    u = CubicHermiteSpline(nodes[:, 0], nodes[:, 1:6], nodes[:, 6:11])(tau)
+    n = N_REC  # recorded: x, y, v_x, v_y, theta, W, D_x, D_y (``_kernel.REC_SLOTS``)
+    u = CubicHermiteSpline(nodes[:, 0], nodes[:, 1:1 + n], nodes[:, 1 + n:1 + 2 * n])(tau)
     return _series(params, tau, *u.T)
 
 
@@ -147,4 +171,5 @@ def _series_from_dense(params, sol, t_out, samples) -> TimeSeries | None:
     if sol is None:
         return None
     tau = np.linspace(0.0, t_out, samples)
-    return _series(params, tau, *sol(tau)[:5])
+    x, y, vx, vy, theta, W, _, D_x, D_y = sol(tau)[:9]
+    return _series(params, tau, x, y, vx, vy, theta, W, D_x, D_y)

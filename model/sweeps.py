@@ -16,29 +16,29 @@ which then raises ``SweepCancelled``.
 """
 from __future__ import annotations
 
-import csv
-import json
 import math
 import time
 from dataclasses import dataclass
 
 import numpy as np
 
+from . import csvfile
 from .cache import DiskCache, make_key
+from .controls import LOAD_RANGE, STIFFNESS_RANGE
+from .files import write_atomic
 from .fixed import orientation_sweep
 from .options import SolverOptions
 from .parallel import SweepCancelled, run_points
 from .params import REGIMES, Params
-from .uniform import uniform_array
+from .quantities import TABLES, value_of
+from .uniform import TOL, uniform_array
+from .validation import grid, load_factor, number, whole
 
 __all__ = ["SweepResult", "SweepCancelled", "regime_map", "load_sweep", "stiffness_sweep",
            "orientation_table", "read_csv", "KINDS"]
 
 #: Sweep kind -> the figures it reproduces.
 KINDS = {"regime_map": "5a, 5b", "load": "6", "stiffness": "8a, 8b", "orientation": "10f, 11"}
-_ARRAY = ["FTx_over_mu0FN", "FTx_over_mu0FN_duration", "Dy_over_Dx", "Nc_over_Nc0", "beta"]
-_CHECKS = ["quadrature_error_FTx", "n_failed", "n_pivot", "success"]
-_SPLIT = ["Dx_over_W", "Dy_over_W", "Uel_over_W", "K_over_W"]
 
 
 @dataclass(frozen=True)
@@ -54,84 +54,53 @@ class SweepResult:
         return len(next(iter(self.columns.values()))) if self.columns else 0
 
     def to_csv(self, path) -> None:
-        """CSV with a header block of ``# key: value`` lines (kind, figure, version, settings).
-
-        ``read_csv`` reads it back; so does ``numpy.genfromtxt(path, delimiter=",",
-        names=True, dtype=None, encoding="utf-8", skip_header=<number of # lines>)``.
-        """
+        """CSV with a header block of ``# key: value`` lines (kind, figure, version, settings,
+        what each column holds), written atomically; ``read_csv`` reads it back (format:
+        ``model.csvfile``)."""
         from . import __version__
 
         header = {"kind": self.kind, "figure": KINDS.get(self.kind, ""), "version": __version__,
                   "points": len(self), "seconds": round(self.seconds, 3), **self.settings}
-        with open(path, "w", newline="", encoding="utf-8") as out:
-            for key, value in header.items():
-                out.write(f"# {key}: {value if isinstance(value, str) else json.dumps(value)}\n")
-            writer = csv.writer(out)
-            writer.writerow(self.columns)
-            for row in zip(*self.columns.values()):
-                writer.writerow([_cell(v) for v in row])
+        def write(tmp):
+            with open(tmp, "w", newline="", encoding="utf-8") as out:
+                csvfile.write(out, self.columns, header)
 
-
-def _cell(value) -> str:
-    """Text of one CSV cell; floats in their shortest round-trip form."""
-    if isinstance(value, (bool, np.bool_)):
-        return str(bool(value))
-    if isinstance(value, (int, np.integer)):
-        return str(int(value))
-    if isinstance(value, (float, np.floating)):
-        return repr(float(value))
-    return str(value)
+        write_atomic(path, write)  # a crash or Ctrl-C never leaves half a table
 
 
 def read_csv(path) -> SweepResult:
     """A ``SweepResult`` read back from ``SweepResult.to_csv`` output."""
-    header, lines = {}, []
-    with open(path, encoding="utf-8") as src:
-        for line in src:
-            if line.startswith("# "):
-                key, _, text = line[2:].rstrip("\n").partition(": ")
-                try:
-                    header[key] = json.loads(text)
-                except ValueError:
-                    header[key] = text
-            else:
-                lines.append(line)
-    names, *rows = list(csv.reader(lines))
-    columns = {name: _parse_column([r[j] for r in rows]) for j, name in enumerate(names)}
+    header, columns = csvfile.read(path)
     kind, seconds = header.pop("kind"), float(header.pop("seconds", 0.0))
     for key in ("figure", "version", "points"):
         header.pop(key, None)
     return SweepResult(kind=kind, columns=columns, settings=header, seconds=seconds)
 
 
-def _parse_column(texts):
-    if texts and set(texts) <= {"True", "False"}:
-        return np.array([t == "True" for t in texts])
-    for kind in (int, float):
-        try:
-            return np.array([kind(t) for t in texts], dtype=kind)
-        except ValueError:
-            pass
-    return np.array(texts)
-
-
 # --------------------------------------------------------------------------- the sweeps
 
 def regime_map(k_r=None, k_theta=None, n: int = 8, F_N: float = 1.0, tol: float = 1e-3,
                beta="self", rtol=None, atol=None, method="auto", max_intervals: int = 256,
-               progress=None, cancel=None, workers: int = 1, scheduler=None) -> SweepResult:
+               progress=None, cancel=None, workers: int = 1, scheduler=None,
+               coarse=None) -> SweepResult:
     """Fig. 5a/b: uniform arrays at every (k_r, k_theta) pair (k_r outer, k_theta inner).
 
     Both axes default to ``n`` log-spaced values on [0.01, 3]. Columns: k_r, k_theta, the
     paper (Eq. 10) and duration-weighted F_T,x/(mu0 F_N), D_y/D_x, N_c/N_c0, beta, the
     quadrature error of F_T,x/(mu0 F_N), failed and pivot-passing members, success.
+
+    Coarse to fine: on grids larger than 8 x 8 an 8 x 8 subgrid (both ends included)
+    is computed first and ``coarse(SweepResult)`` is called with it, then the rest.
+    Along each k_theta row the self-consistent beta of one point starts the next
+    (continuation); the results agree with independent points to within ``tol``.
     """
     n = _count(n)
     k_r, k_theta = (_grid(name, _log_axis(n) if g is None else g)
                     for name, g in (("k_r", k_r), ("k_theta", k_theta)))
     points = [Params(a, b, F_N=F_N) for a in k_r for b in k_theta]
-    return _uniform_sweep("regime_map", points, {}, ["k_r", "k_theta", *_ARRAY, *_CHECKS],
-                          dict(F_N=float(F_N)), _run_args(locals()))
+    return _uniform_sweep("regime_map", points, {}, TABLES["regime_map"],
+                          dict(F_N=float(F_N)), _run_args(locals()),
+                          plan=_grid_plan(k_r.size, k_theta.size), coarse=coarse)
 
 
 def load_sweep(regimes=("pendulum", "slider", "stiff", "soft"), F_N=None, n: int = 9,
@@ -148,11 +117,12 @@ def load_sweep(regimes=("pendulum", "slider", "stiff", "soft"), F_N=None, n: int
     unknown = [r for r in regimes if r not in REGIMES]
     if not regimes or unknown:
         raise ValueError(f"regimes={regimes!r} must name regimes among {sorted(REGIMES)}")
-    loads = _grid("F_N", np.logspace(-1, 1, n) if F_N is None else F_N)
+    loads = _grid("F_N", _log_axis(n, LOAD_RANGE) if F_N is None else F_N)
     points = [REGIMES[r].replace(F_N=f) for r in regimes for f in loads]
     labels = {"regime": [r for r in regimes for _ in loads]}
-    names = ["regime", "k_r", "k_theta", "F_N", *_ARRAY, *_CHECKS]
-    return _uniform_sweep("load", points, labels, names, {}, _run_args(locals()))
+    # Continuation along the load axis, one chain per regime.
+    return _uniform_sweep("load", points, labels, TABLES["load"], {}, _run_args(locals()),
+                          plan=_grid_plan(len(regimes), loads.size, coarse=False))
 
 
 def stiffness_sweep(k_r=None, k_theta=(0.01, 0.03, 0.1, 0.3, 1, 3), n: int = 8,
@@ -168,10 +138,8 @@ def stiffness_sweep(k_r=None, k_theta=(0.01, 0.03, 0.1, 0.3, 1, 3), n: int = 8,
     k_r = _grid("k_r", _log_axis(n) if k_r is None else k_r)
     k_theta = _grid("k_theta", k_theta)
     points = [Params(a, b, F_N=F_N) for b in k_theta for a in k_r]
-    names = ["k_theta", "k_r", "Nc_over_Nc0", *_SPLIT, *_ARRAY[:3], "beta",
-             "quadrature_error_Nc", *_CHECKS]
-    return _uniform_sweep("stiffness", points, {}, names, dict(F_N=float(F_N)),
-                          _run_args(locals()))
+    return _uniform_sweep("stiffness", points, {}, TABLES["stiffness"], dict(F_N=float(F_N)),
+                          _run_args(locals()), plan=_grid_plan(k_theta.size, k_r.size, coarse=False))
 
 
 def orientation_table(params, theta0=None, n: int = 37, beta="self", rtol: float = 1e-6,
@@ -187,18 +155,13 @@ def orientation_table(params, theta0=None, n: int = 37, beta="self", rtol: float
     if isinstance(params, str):
         params = Params.regime(params)
     # Default: midpoints of n equal cells of [0, pi], off the exact axis orientations
-    # 0 and pi (where the mass starts on the axis; MODEL.md "Hard cases").
+    # 0 and pi (where the mass starts on the axis; docs/model.md "Hard cases").
     theta0 = (np.arange(_count(n)) + 0.5) * math.pi / n if theta0 is None else theta0
     theta0 = _grid("theta0", theta0, positive=False)
     if cancel is not None and cancel.is_set():
         raise SweepCancelled(0, theta0.size)
     s = orientation_sweep(params, theta0, beta=beta, rtol=rtol, atol=atol, method=method)
-    columns = {"theta0": s.theta0, "FTx_over_mu0FN": s.FTx_over_mu0FN,
-               "FTy_over_mu0FN": s.FTy_over_mu0FN, "Dy_over_Dx": s.Dy_over_Dx,
-               "Nc_over_Nc0": s.Nc_over_Nc0, "dtheta_rms": s.dtheta_rms, "dr_rms": s.dr_rms,
-               "beta": s.beta, "pivot_approach": s.contacts.pivot_approach,
-               "relative_residual": np.abs(s.contacts.energy_residual) / np.abs(s.contacts.W),
-               "success": s.success}
+    columns = {name: value_of(s, name) for name in TABLES["orientation"]}
     if progress is not None:
         progress(theta0.size, theta0.size)
     fields = {k: v for k, v in params.as_dict().items() if k not in ("theta0", "beta")}
@@ -212,27 +175,16 @@ def orientation_table(params, theta0=None, n: int = 37, beta="self", rtol: float
 # --------------------------------------------------------------------------- validation
 
 def _count(n) -> int:
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
-        raise ValueError(f"n={n!r} must be a whole number >= 1")
-    return int(n)
+    return whole("n", n, 1)
 
 
-def _log_axis(n: int) -> np.ndarray:
-    """``n`` log-spaced stiffnesses on [0.01, 3], the axes of Figs. 5 and 8."""
-    return np.logspace(-2, math.log10(3.0), n)
+def _log_axis(n: int, span=STIFFNESS_RANGE) -> np.ndarray:
+    """``n`` log-spaced values on ``span``: the stiffness axes of Figs. 5 and 8 ([0.01, 3])
+    by default, the loads of Fig. 6 with ``LOAD_RANGE``."""
+    return np.logspace(math.log10(span.lo), math.log10(span.hi), n)
 
 
-def _grid(name: str, values, positive: bool = True) -> np.ndarray:
-    """A non-empty 1-D array of finite (and positive) numbers, else ``ValueError``."""
-    try:
-        grid = np.atleast_1d(np.asarray(values, dtype=float))
-    except (TypeError, ValueError):
-        grid = np.array([])
-    bad = grid.ndim != 1 or grid.size == 0 or not np.all(np.isfinite(grid))
-    if bad or (positive and np.any(grid <= 0)):
-        kind = "positive finite" if positive else "finite"
-        raise ValueError(f"{name}={values!r} must be a non-empty 1-D sequence of {kind} numbers")
-    return grid
+_grid = grid
 
 
 _RUN_KEYS = ("tol", "beta", "rtol", "atol", "method", "max_intervals", "progress", "cancel",
@@ -246,38 +198,88 @@ def _run_args(scope: dict) -> dict:
 
 def _solver_settings(args: dict) -> dict:
     """Validated uniform-array settings from a sweep's arguments (``ValueError`` if bad)."""
-    tol, beta, workers = args["tol"], args["beta"], args["workers"]
-    # The range uniform_array accepts, checked here so a bad value fails before any work.
-    if isinstance(tol, bool) or not isinstance(tol, (int, float)) or not 1e-8 <= tol <= 0.5:
-        raise ValueError(f"tol={tol!r} must be in [1e-8, 0.5]")
-    if isinstance(beta, str):
-        if beta != "self":
-            raise ValueError(f"beta={beta!r} must be 'self' or a number in (0, 1]")
-    else:
-        beta = Params(1.0, 1.0, beta=beta).beta
+    # What uniform_array accepts, checked here so a bad value fails before any work.
+    tol = number("tol", args["tol"], TOL, "quadrature tolerance tol")
+    beta = load_factor("beta", args["beta"])
     SolverOptions(rtol=1e-6 if args["rtol"] is None else args["rtol"], atol=args["atol"],
                   method=args["method"])
-    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
-        raise ValueError(f"workers={workers!r} must be a whole number >= 1")
-    intervals = args["max_intervals"]
-    if isinstance(intervals, bool) or not isinstance(intervals, (int, np.integer)) \
-            or intervals < 1:
-        raise ValueError(f"max_intervals={intervals!r} must be a whole number >= 1")
+    workers = whole("workers", args["workers"], 1)
+    intervals = whole("max_intervals", args["max_intervals"], 1)
     if args["scheduler"] is not None and workers != 1:
         raise ValueError(f"workers={workers!r} must be 1 when a scheduler is given")
-    return dict(tol=float(tol), beta=beta, rtol=args["rtol"], atol=args["atol"],
-                method=args["method"], max_intervals=int(args["max_intervals"]))
+    return dict(tol=tol, beta=beta, rtol=args["rtol"], atol=args["atol"],
+                method=args["method"], max_intervals=intervals)
 
 
 # --------------------------------------------------------------------------- uniform points
 
-def _uniform_sweep(kind, points, labels, names, fixed, args) -> SweepResult:
-    """Run ``uniform_array`` at every point and gather the columns ``names``."""
+def _grid_plan(n_outer: int, n_inner: int, coarse: bool = True, first: int = 8) -> list:
+    """(n_inner, phases of chains of flat point indices outer * n_inner + inner): the
+    order of work of a grid sweep.
+
+    Each chain runs along the inner axis, each point starting from its predecessor's
+    self-consistent beta. With ``coarse`` and a grid over ``first`` points on a side,
+    the first phase is a ``first`` x ``first`` subgrid (ends included), the second the
+    rest: a complete coarse picture early.
+    """
+    def take(count):
+        return sorted(set(np.linspace(0, count - 1, min(first, count)).round().astype(int)))
+
+    if not coarse or (n_outer <= first and n_inner <= first):
+        return n_inner, [[[o * n_inner + i for i in range(n_inner)] for o in range(n_outer)]]
+    rows, cols = take(n_outer), take(n_inner)
+    phase1 = [[o * n_inner + i for i in cols] for o in rows]
+    done = set(i for chain in phase1 for i in chain)
+    phase2 = [[o * n_inner + i for i in range(n_inner) if o * n_inner + i not in done]
+              for o in range(n_outer)]
+    return n_inner, [phase1, [c for c in phase2 if c]]
+
+
+def _uniform_sweep(kind, points, labels, names, fixed, args, plan=None,
+                   coarse=None) -> SweepResult:
+    """Run ``uniform_array`` at every point and gather the columns ``names``.
+
+    ``plan`` (phases of chains of point indices, see ``_grid_plan``) orders the work:
+    the chains of one phase run in parallel, each point of a chain seeded with the beta
+    of its predecessor or of the nearest point of an earlier phase; ``coarse`` gets the
+    ``SweepResult`` of the first phase when there are several.
+    """
     start = time.perf_counter()
     settings = _solver_settings(args)
-    tasks = [(p, settings) for p in points]
-    rows = run_points(_uniform_point, tasks, args["workers"], args["scheduler"],
-                      args["progress"], args["cancel"])
+    width, plan = (1, [[[i] for i in range(len(points))]]) if plan is None else plan
+    rows = [None] * len(points)
+    total, done_before = len(points), 0
+    progress = args["progress"]
+    for number, phase in enumerate(plan):
+        def seed(i):
+            """(beta, slope) of the nearest point already computed, and its distance."""
+            best = None
+            for j, row in enumerate(rows):
+                if row is None:
+                    continue
+                d = abs(i // width - j // width) + abs(i % width - j % width)
+                if best is None or d < best[0]:
+                    best = (d, (row["beta"], row.get("beta_slope", math.nan)))
+            return best or (math.inf, None)
+
+        tasks = [[(points[i], settings) + seed(i) for i in chain] for chain in phase]
+        report = None if progress is None else (
+            lambda done, _total, base=done_before: progress(base + done, total))
+        results = run_points(_uniform_chain, tasks, args["workers"], args["scheduler"], report,
+                             args["cancel"], sizes=[len(c) for c in phase])
+        for chain, chain_rows in zip(phase, results):
+            for i, row in zip(chain, chain_rows):
+                rows[i] = row
+        done_before += sum(len(c) for c in phase)
+        if coarse is not None and number == 0 and len(plan) > 1:
+            ids = sorted(i for chain in phase for i in chain)
+            coarse(_sweep_result(kind, [rows[i] for i in ids],
+                                 {k: [v[i] for i in ids] for k, v in labels.items()},
+                                 names, fixed, settings, args, start))
+    return _sweep_result(kind, rows, labels, names, fixed, settings, args, start)
+
+
+def _sweep_result(kind, rows, labels, names, fixed, settings, args, start) -> SweepResult:
     columns = {name: np.asarray(labels[name] if name in labels else [r[name] for r in rows])
                for name in names}
     scheduler = args["scheduler"]
@@ -287,24 +289,36 @@ def _uniform_sweep(kind, points, labels, names, fixed, args) -> SweepResult:
     return SweepResult(kind, columns, settings, time.perf_counter() - start)
 
 
-def _uniform_point(task) -> dict:
+def _uniform_chain(chain) -> list:
+    """Rows of a chain of points, each continued from its predecessor's beta.
+
+    A task is (params, settings, distance, (beta, slope) or None) with the seed from an
+    earlier phase; the predecessor in the chain (distance 1) is preferred when nearer.
+    """
+    rows, previous = [], None
+    for params, settings, distance, seeded in chain:
+        guess = previous if previous is not None and distance > 1 else seeded
+        row = _uniform_point((params, settings), guess)
+        rows.append(row)
+        previous = (row["beta"], row.get("beta_slope", math.nan))
+    return rows
+
+
+def _uniform_point(task, guess=None) -> dict:
     """One uniform array (Figs. 5, 6, 8) as a row of plain numbers, from the disk cache
-    when this point was computed before with the same settings and package version."""
+    when this point was computed before with the same settings and package version.
+    ``guess`` (beta, slope) only starts the self-consistent solve: not part of the key."""
     params, settings = task
     key = make_key("uniform_array", params=params.as_dict(), **settings)
-    row = DiskCache().get_or_compute(key, lambda: _compute_point(params, settings))
+    row = DiskCache().get_or_compute(key, lambda: _compute_point(params, settings, guess))
     return {name: value.item() for name, value in row.items()}
 
 
-def _compute_point(params, settings) -> dict:
-    r = uniform_array(params, **settings)
-    q, split = r.quadrature_error, r.work_split
-    row = {"k_r": params.k_r, "k_theta": params.k_theta, "F_N": params.F_N,
-            "FTx_over_mu0FN": r.FTx_over_mu0FN,
-            "FTx_over_mu0FN_duration": r.FTx_over_mu0FN_duration,
-            "Dy_over_Dx": r.Dy_over_Dx, "Nc_over_Nc0": r.Nc_over_Nc0, "beta": r.beta,
-            "Dx_over_W": split["D_x"], "Dy_over_W": split["D_y"], "Uel_over_W": split["U_el"],
-            "K_over_W": split["K"], "quadrature_error_FTx": q["FTx_over_mu0FN"],
-            "quadrature_error_Nc": q["Nc_over_Nc0"], "n_failed": r.n_failed,
-            "n_pivot": r.n_pivot, "success": r.success, "rtol": r.stats["rtol"]}
-    return {name: np.asarray(value) for name, value in row.items()}
+def _compute_point(params, settings, guess=None) -> dict:
+    if settings["beta"] != "self" or guess is None or not 0 < guess[0] <= 1:
+        guess = None
+    r = uniform_array(params, **settings, beta_guess=guess)
+    inputs = {"k_r": params.k_r, "k_theta": params.k_theta, "F_N": params.F_N,
+              "rtol": r.stats["rtol"]}
+    return {name: np.asarray(inputs[name] if name in inputs else value_of(r, name))
+            for name in TABLES["uniform_point"]}

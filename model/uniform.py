@@ -4,14 +4,18 @@ The paper averages n = 200 random supports (Eq. 10); here the average over theta
 a deterministic adaptive Gauss-Kronrod quadrature with an error estimate. Mirror
 symmetry (y -> -y) makes F_x even and F_y odd in theta0, so only [0, pi] is
 integrated and F_T,y = 0 (``full_circle=True`` integrates [0, 2 pi) as a check).
-Two averages of the same trajectories (MODEL.md):
+Two averages of the same trajectories (docs/model.md, "Arrays"):
 
 * paper (Eq. 10, default): mean over supports of F_x/f_N;
 * duration-weighted: sum of int F_f,x dtau over f_N sum tau_out, the steady force
   on the slab when contacts last different times.
 
 Energy ratios are ratios of ensemble sums. The load factor beta = L0/<tau_out>(beta)
-is solved self-consistently by default (``model.beta``).
+is solved self-consistently by default (``model.beta``), coarse to fine: first on one
+15-node interval, then the quadrature refines its partition at that beta, then Newton
+(secant) steps on the refined partition start from the residual G(beta) that the
+quadrature yields for free, until |G| <= tol/1000. Every member is integrated once per
+(beta, theta0) and reused (the last beta evaluated is the one the quadrature uses).
 """
 from __future__ import annotations
 
@@ -22,15 +26,19 @@ from functools import lru_cache
 
 import numpy as np
 
-from .beta import solve_beta_scalar
+from .beta import solve_beta_secant
 from .contacts import run_contacts
 from .friction import mu0
 from .options import SolverOptions
-from .params import Params
+from .params import Params, check_array_params
 from .quadrature import W_K, integrate
-from .results import ACCURACY_FACTOR
+from .results import ACCURACY_FACTOR, ArrayResult
+from .validation import Interval, instance, load_factor, number, whole
 
-__all__ = ["UniformArrayResult", "uniform_array"]
+__all__ = ["UniformArrayResult", "uniform_array", "TOL"]
+
+#: Quadrature tolerance on F_T,x/(mu0 F_N) and N_c/N_c0 a uniform array accepts.
+TOL = Interval(1e-8, 0.5)
 
 # Integrand components per orientation; the last three are diagnostics, not averaged.
 QUANTITIES = ("F_x", "F_y", "t_out", "W", "D_x", "D_y", "U_el", "K", "dtheta_rms", "dr_rms")
@@ -38,24 +46,22 @@ DIAGNOSTICS = ("pivot", "relative_residual", "failed")
 _FX, _FY, _T = 0, 1, 2
 
 
-@dataclass(frozen=True)
-class UniformArrayResult:
-    """A uniform-orientation array; every ``*_error`` is the quadrature error estimate."""
+def COARSE_PARTITIONS(span):
+    """Partitions on which beta is solved before the quadrature refines (coarse first)."""
+    return (np.array([0.0, span]),)
 
-    params: Params  # with the beta used
-    FTx_over_mu0FN: float  # paper average, Eq. (10)
+
+@dataclass(frozen=True)
+class UniformArrayResult(ArrayResult):
+    """A uniform-orientation array; every ``*_error`` is the quadrature error estimate.
+
+    ``params`` holds the beta used; ``FTx_over_mu0FN`` is the paper average (Eq. 10).
+    """
+
     FTx_over_mu0FN_duration: float  # duration-weighted average
-    FTy_over_mu0FN: float
-    Dy_over_Dx: float
-    Nc_over_Nc0: float
-    beta: float
-    work_split: dict
-    dtheta_rms: float
-    dr_rms: float
     quadrature_error: dict
     integration_error: float  # largest |energy residual| / W over the members
     beta_iterations: int
-    beta_residual: float
     n_members: int
     n_failed: int
     n_pivot: int
@@ -65,81 +71,135 @@ class UniformArrayResult:
     seconds: float
     stats: dict = field(default_factory=dict)
 
-    def to_dict(self) -> dict:
-        d = {k: getattr(self, k) for k in self.__dataclass_fields__ if k != "params"}
-        d["failed_theta0"] = list(self.failed_theta0)
-        d["params"] = self.params.as_dict()
-        return d
-
 
 def uniform_array(params: Params, beta="self", tol: float = 1e-3, rtol: float | None = None,
                   atol: float | None = None, method: str = "auto", max_intervals: int = 256,
-                  full_circle: bool = False) -> UniformArrayResult:
-    """Uniform-orientation array for the springs and load of ``params`` (theta0 ignored).
+                  full_circle: bool = False, *, beta_guess=None) -> UniformArrayResult:
+    """Uniform-orientation array for the springs and load of ``params``.
+
+    The array covers every theta0, so ``params.theta0`` must be left at its default; its
+    load factor is the ``beta`` argument, so ``params.beta`` must be 1 or equal ``beta``
+    (``ValueError`` otherwise: nothing in ``params`` is silently ignored).
 
     ``tol`` bounds the quadrature error estimates of F_T,x/(mu0 F_N) and N_c/N_c0;
     intervals of theta0 are bisected where the integrand is rough until it is met.
     ``beta="self"`` solves beta = L0/<tau_out>(beta); a number fixes it.
     ``rtol=None`` integrates each member at tol/100 (at most 1e-5), so the integration
     error stays well below the quadrature tolerance.
+    ``beta_guess`` (a number, or (beta, slope of G) from ``UniformArrayResult.stats``
+    of a neighbouring array) starts the self-consistent solve near its root
+    (continuation across a sweep); the result is the same to within the tolerance.
     """
-    if not isinstance(params, Params):
-        raise TypeError(f"params must be a model.Params, not {type(params).__name__}")
-    if not (isinstance(tol, (int, float)) and 1e-8 <= tol <= 0.5):
-        raise ValueError(f"tol={tol!r} must be in [1e-8, 0.5]")
-    if isinstance(max_intervals, bool) or not isinstance(max_intervals, (int, np.integer)) \
-            or max_intervals < 1:
-        raise ValueError(f"max_intervals={max_intervals!r} must be a whole number >= 1")
-    if isinstance(beta, str) and beta != "self":
-        raise ValueError(f"beta={beta!r} must be 'self' or a number in (0, 1]")
-    if rtol is None and isinstance(tol, (int, float)):
+    instance("params", params, Params)
+    tol = number("tol", tol, TOL, "quadrature tolerance tol")
+    max_intervals = whole("max_intervals", max_intervals, 1)
+    beta = load_factor("beta", beta)
+    check_array_params(params, "uniform_array", beta, uses_theta0=False)
+    if rtol is None:
         rtol = min(1e-5, max(1e-10, tol / 100))
     options = SolverOptions(rtol=rtol, atol=atol, method=method)
     if not isinstance(beta, str):
         params = params.replace(beta=beta)
+    guess, slope = _guess(beta_guess)
     return _uniform(params.replace(theta0=0.0), beta == "self", float(tol), options,
-                    int(max_intervals), bool(full_circle))
+                    int(max_intervals), bool(full_circle), guess, slope)
+
+
+def _guess(beta_guess):
+    """(beta, slope) from ``beta_guess``: None, a number, or a (beta, slope) pair."""
+    if beta_guess is None:
+        return None, None
+    beta, slope = (beta_guess, None) if np.ndim(beta_guess) == 0 else beta_guess
+    beta = float(beta)
+    if not (math.isfinite(beta) and 0.0 < beta <= 1.0):
+        raise ValueError(f"beta_guess={beta_guess!r} must be a number in (0, 1] "
+                         "or a (beta, slope) pair")
+    slope = float(slope) if slope is not None and math.isfinite(float(slope)) else None
+    return beta, slope
 
 
 @lru_cache(maxsize=256)
-def _uniform(params, self_consistent, tol, options, max_intervals, full_circle):
+def _uniform(params, self_consistent, tol, options, max_intervals, full_circle,
+             guess=None, slope=None):
     start = time.perf_counter()
     span = 2 * math.pi if full_circle else math.pi
     counter = {"trajectories": 0, "n_rhs": 0}
-    state = {"beta": params.beta}
-
-    def integrand(theta0, beta=None):
-        c = run_contacts(params, theta0, options, beta=np.full(theta0.size, beta or state["beta"]))[0]
-        counter["trajectories"] += theta0.size
-        counter["n_rhs"] += c.n_rhs
-        vals = np.column_stack([getattr(c, q) for q in QUANTITIES])
-        vals[~c.ok] = np.nan
-        with np.errstate(divide="ignore", invalid="ignore"):
-            relres = np.abs(c.energy_residual / c.W)
-        return np.column_stack([_repair(vals), c.pivot_approach, relres, ~c.ok]), c
-
+    integrand = _Members(params, options, counter)
     m0 = mu0(params)
-    f = lambda x: integrand(x)[0]  # noqa: E731
     # Error targets on the integrals of F_x/f_N and tau_out for tol on the means.
     targets = np.array([tol * m0 * span, tol * params.L0 * span])
+    beta = params.beta
+    beta_iter, beta_res = 0, 0.0
     edges = np.linspace(0.0, span, 5)
-    beta_iter, beta_res, guess = 0, 0.0, None
-    for _ in range(4 if self_consistent else 1):
-        if self_consistent:
-            # beta on the current partition, then refine the partition at that beta.
-            sol = solve_beta_scalar(lambda b: _mean(edges, integrand(_nodes(edges), b)[0][:, _T], span),
-                                    params.L0, xtol=tol / 100, guess=guess, width=0.01)
+    if self_consistent:
+        # Coarse to fine: beta on one 15-node interval first (a quarter of the work
+        # per evaluation), then continued onto the 4-interval start partition.
+        for edges in COARSE_PARTITIONS(span):
+            sol = solve_beta_secant(lambda b: _mean(edges, integrand(_nodes(edges), b)[:, _T], span),
+                                    params.L0, xtol=tol / 100 if edges.size > 2 else tol / 10,
+                                    guess=guess, slope=slope)
             beta_iter += sol.iterations
-            state["beta"] = guess = sol.beta
-        quad = integrate(f, 0.0, span, targets, control=[_FX, _T], edges=edges,
-                         max_intervals=max_intervals)
+            beta, guess = sol.beta, sol.beta
+            slope = sol.slope if math.isfinite(sol.slope) else slope
+    edges = np.linspace(0.0, span, 5)
+    # beta is converged when |G| <= gtol on the quadrature's own partition (a slope of
+    # G >= 1 makes that |beta - beta*| <= gtol, a hundredth of the former bracket width
+    # tol/100 whose final secant step usually landed that close).
+    gtol = tol / 1000
+    for _ in range(6):
+        quad = integrate(lambda x: integrand(x, beta), 0.0, span, targets, control=[_FX, _T],
+                         edges=edges, max_intervals=max_intervals)
+        if not self_consistent:
+            break
         # G(beta) on the refined partition comes free with the quadrature.
-        beta_res = state["beta"] - params.L0 * span / quad.integral[_T] if self_consistent else 0.0
-        if quad.edges.size == edges.size or abs(beta_res) <= tol / 10:
+        beta_res = beta - params.L0 * span / quad.integral[_T]
+        if abs(beta_res) <= gtol:
             break
         edges = quad.edges
-    return _result(params.replace(beta=state["beta"]), quad, span, m0, counter,
+        # Newton's step from the free residual with the slope of the last solve.
+        sol = solve_beta_secant(lambda b: _mean(edges, integrand(_nodes(edges), b)[:, _T], span),
+                                params.L0, xtol=gtol,
+                                guess=beta - beta_res / (slope if slope and slope > 0 else 1.0),
+                                slope=slope, gtol=gtol)
+        beta_iter += sol.iterations
+        beta = sol.beta
+        slope = sol.slope if math.isfinite(sol.slope) else slope
+    if slope is not None and math.isfinite(slope):  # dG/dbeta, to continue a sweep from
+        counter["beta_slope"] = float(slope)
+    return _result(params.replace(beta=beta), quad, span, m0, counter,
                    beta_iter, beta_res, options, time.perf_counter() - start)
+
+
+class _Members:
+    """Integrand of the orientation average: each member's quantities at a load factor.
+
+    Every member computed is kept by (beta, theta0), so the beta iterations and the
+    quadrature at the solved beta never integrate the same contact twice.
+    """
+
+    def __init__(self, params, options, counter):
+        self.params, self.options, self.counter = params, options, counter
+        self.rows: dict = {}
+
+    def __call__(self, theta0, beta):
+        theta0 = np.asarray(theta0, dtype=float)
+        keys = [(beta, t) for t in theta0.tolist()]
+        missing = [i for i, k in enumerate(keys) if k not in self.rows]
+        if missing:
+            c = run_contacts(self.params, theta0[missing], self.options,
+                             beta=np.full(len(missing), beta))[0]
+            self.counter["trajectories"] += len(missing)
+            self.counter["n_rhs"] += c.n_rhs
+            vals = np.column_stack([getattr(c, q) for q in QUANTITIES])
+            vals[~c.ok] = np.nan
+            with np.errstate(divide="ignore", invalid="ignore"):
+                relres = np.abs(c.energy_residual / c.W)
+            new = np.column_stack([vals, c.pivot_approach, relres, ~c.ok])
+            for i, row in zip(missing, new):
+                self.rows[keys[i]] = row
+        out = np.array([self.rows[k] for k in keys])
+        out[:, :len(QUANTITIES)] = _repair(out[:, :len(QUANTITIES)])
+        return out
 
 
 def _repair(vals):

@@ -196,10 +196,46 @@ def _is_model_command(argv: list[str]) -> bool:
     return argv[:1] in (["python"], ["python3"]) and argv[1:3] == ["-m", "model"]
 
 
+CONSTRAINTS = "constraints.txt"
+PIP_ARGS = ["--no-cache-dir", "--constraint", CONSTRAINTS, "."]
+
+
 def _check_pip_install(pip_args: list[str], line: int) -> None:
-    assert pip_args == ["--no-cache-dir", "."], (
-        f"line {line}: the image installs the project from its own pyproject.toml "
-        f"(`pip install --no-cache-dir .`), got `pip install {shlex.join(pip_args)}`")
+    assert pip_args == PIP_ARGS, (
+        f"line {line}: the image installs the project from its own pyproject.toml at the "
+        f"tested versions (`pip install {shlex.join(PIP_ARGS)}`), got "
+        f"`pip install {shlex.join(pip_args)}`")
+
+
+def constraint_pins(path: Path) -> dict[str, str]:
+    """``name==version`` lines of a constraints file (every other form refused)."""
+    pins = {}
+    for number, raw in enumerate(path.read_text().splitlines(), 1):
+        line = raw.strip()
+        if not line or line.startswith("#"):
+            continue
+        match = re.fullmatch(r"([A-Za-z0-9][A-Za-z0-9._-]*)==([A-Za-z0-9.+!_-]+)", line)
+        assert match, f"{path.name}:{number}: {line!r} is not an exact `name==version` pin"
+        pins[match[1].lower()] = match[2]
+    return pins
+
+
+def check_constraints(path: Path) -> dict[str, str]:
+    """The pins of ``path``, asserting each is the version installed here: the image then
+    gets the versions the tests ran against (the replay uses this environment's)."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    pins, wrong = constraint_pins(path), []
+    for name, pinned in pins.items():
+        try:
+            here = version(name)
+        except PackageNotFoundError:
+            here = "not installed"
+        if here != pinned:
+            wrong.append(f"{name}=={pinned} (here {here})")
+    assert not wrong, (f"{path.name} pins versions the tests do not run against: "
+                       f"{', '.join(wrong)}; run `python .ci/constraints.py`")
+    return pins
 
 
 @dataclasses.dataclass
@@ -262,10 +298,13 @@ def replay_build(root: Path) -> Replay:
                 pip_args = _pip_install_args(argv)
                 if pip_args is not None:
                     _check_pip_install(pip_args, inst.line)
-                    # The dependencies are this environment's own; the project itself is
-                    # built from the copied files exactly as in the image.
+                    # The dependencies are this environment's own, at the versions the
+                    # copied constraints pin (checked); the project itself is built from
+                    # the copied files exactly as in the image, with those constraints.
+                    check_constraints(cwd / CONSTRAINTS)
                     subprocess.run([sys.executable, "-m", "pip", "install", "--quiet",
-                                    "--no-cache-dir", "--no-deps", "--target", str(site), "."],
+                                    "--no-cache-dir", "--no-deps", "--constraint",
+                                    CONSTRAINTS, "--target", str(site), "."],
                                    cwd=cwd, check=True, timeout=600,
                                    env=dict(os.environ, PIP_ROOT_USER_ACTION="ignore"))
                 elif _is_model_command(argv):

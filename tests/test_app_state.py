@@ -4,18 +4,15 @@ Every control maps to the right ``model.Params`` (or array argument); the preset
 reset; the URL round trip; unusable URL values fall back to defaults with a notice and
 never raise.
 """
+import concurrent.futures as cf
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-
-from app.state import PRESETS, ExplorerState, classify  # noqa: E402
-from app.urlstate import DEFAULTS, RTOLS, parse, serialize, to_search  # noqa: E402
-from model import REGIMES, Params  # noqa: E402
+from app.state import PRESETS, ExplorerState, classify
+from app.urlstate import DEFAULTS, RTOLS, parse, serialize, to_search
+from model import REGIMES, Params
 
 
 def test_defaults_are_the_pendulum_of_fig_7a():
@@ -90,14 +87,35 @@ def test_classify_quadrants():
     assert classify(3, 3) == "stiff" and classify(0.03, 0.03) == "soft"
 
 
-def test_reset_restores_every_control_but_the_tab():
+def test_reset_restores_every_control_but_the_view():
     s = ExplorerState()
     s.param.update(k_r=0.05, k_theta=2.0, F_N=7.0, theta0=200.0, rtol=1e-8, beta_mode="fixed",
                    beta=0.3, average="duration", map_quantity="5b", projector=True,
                    tab="map", notice="x")
     s.reset()
-    assert s.values() == {**DEFAULTS, "tab": "map"}
+    assert s.values() == {**DEFAULTS, "tab": "map", "projector": True}
     assert s.notice == ""
+
+
+def test_restore_query_sets_exactly_the_state_of_an_address():
+    s = ExplorerState()
+    s.param.update(k_r=0.05, F_N=7.0, projector=True, tab="map", average="duration")
+    notices = s.restore_query("?k_r=0.5&k_theta=0.2&F_N=2&theta0_deg=45&tab=polar")
+    assert notices == [] and s.notice == ""
+    assert s.values() == {**DEFAULTS, "k_r": 0.5, "k_theta": 0.2, "F_N": 2.0, "theta0": 45.0,
+                          "tab": "polar"}
+    assert s.restore_query("?k_r=banana") and "k_r" in s.notice
+    assert s.values() == DEFAULTS
+
+
+def test_the_preset_of_the_current_springs_is_found():
+    s = ExplorerState()
+    assert s.matching_preset() == "pendulum"
+    for name, (k_r, k_theta) in PRESETS.items():
+        s.apply_preset(name)
+        assert s.matching_preset() == name
+    s.k_r = 0.5
+    assert s.matching_preset() is None
 
 
 def test_set_theta0_wraps_and_rounds():
@@ -224,10 +242,14 @@ def _orbit(page):
     return np.asarray(page.support._sources["orbit"].data["x1"]).copy()
 
 
+def _error(page, name="support"):
+    return page.results.errors.get(name, "")
+
+
 def test_the_page_builds_with_data(dashboard):
-    assert dashboard.support.data.result is not None and dashboard.support.error == ""
+    assert dashboard.results.support.result is not None and _error(dashboard) == ""
     assert len(_orbit(dashboard)) == 399
-    assert dashboard.readouts.uniform["FTx_over_mu0FN"] == pytest.approx(0.945, abs=0.01)
+    assert dashboard.results.uniform["FTx_over_mu0FN"] == pytest.approx(0.945, abs=0.01)
     assert dashboard.messages == []
 
 
@@ -239,7 +261,7 @@ def test_every_control_changes_the_plotted_support(dashboard, change):
     state.reset()
     before = _orbit(dashboard)
     state.param.update(**change)
-    data = dashboard.support.data
+    data = dashboard.results.support
     assert data.params.k_r == state.k_r and data.params.theta0 == state.params.theta0
     after = _orbit(dashboard)
     assert before.shape != after.shape or not np.array_equal(before, after)
@@ -256,24 +278,24 @@ def test_a_preset_changes_the_orbit_and_the_regime_text(dashboard):
 
 
 def test_a_model_error_is_shown_and_the_page_recovers(dashboard, monkeypatch):
-    import concurrent.futures as cf
 
-    from app.views import support as support_view
+    from app import slot
 
-    def broken(*args, **kwargs):
-        future = cf.Future()
-        future.set_exception(RuntimeError("solver exploded"))
-        return future
+    class Broken:
+        def submit(self, lane, key, fn, *args, **options):
+            future = cf.Future()
+            future.set_exception(RuntimeError("solver exploded"))
+            return future
 
     dashboard.state.reset()
     before = _orbit(dashboard)
-    monkeypatch.setattr(support_view, "support_future", broken)
+    monkeypatch.setattr(slot, "work_pool", Broken)
     dashboard.state.F_N = 2.0
     assert "solver exploded" in dashboard.alert.object and dashboard.alert.visible
     assert np.allclose(before, _orbit(dashboard))  # the last good plot stays
     monkeypatch.undo()
     dashboard.state.F_N = 3.0
-    assert dashboard.support.error == "" and not dashboard.alert.visible
+    assert _error(dashboard) == "" and not dashboard.alert.visible
     dashboard.state.reset()
 
 
@@ -282,10 +304,9 @@ def test_polar_and_load_compute_only_when_visible(dashboard):
     state.reset()
     state.tab = "support"
     state.k_r = 0.7  # no polar sweep for hidden tabs
-    assert dashboard.polar is None or dashboard.polar.sweep is None \
-        or dashboard.polar.sweep.settings["k_r"] != 0.7
+    assert dashboard.results.polar is None or dashboard.results.polar.settings["k_r"] != 0.7
     state.tab = "polar"
-    sweep = dashboard.polar.sweep
+    sweep = dashboard.results.polar
     assert sweep.settings["k_r"] == 0.7 and len(sweep.columns["theta0"]) == 72
     x = np.asarray(dashboard.polar._sources["polar_FTy"].data["value"])
     assert x.size == 145 and np.allclose(x[:72], -x[72:144][::-1])  # F_T,y is odd

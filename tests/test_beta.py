@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from model import REGIMES, fixed_orientation, simulate_support, uniform_array
-from model.beta import solve_beta, solve_beta_scalar
+from model.beta import solve_beta, solve_beta_scalar, solve_beta_secant
 
 
 def test_vectorised_solver_on_known_roots():
@@ -69,3 +69,45 @@ def test_self_consistent_beta_for_fixed_arrays(regime):
     res = fixed_orientation(REGIMES[regime].replace(theta0=1.0))
     assert 0 < res.beta <= 1 and res.beta == pytest.approx(1 / res.Nc_over_Nc0, rel=1e-7)
     assert math.isclose(res.params.beta, res.beta)
+
+
+def test_secant_solver_on_known_root_cold_and_from_a_guess():
+    tau = lambda b: 10.0 * (1 + 3.0 * b)  # noqa: E731
+    root = (math.sqrt(13) - 1) / 6
+    cold = solve_beta_secant(tau, 10.0, xtol=1e-12)
+    warm = solve_beta_secant(tau, 10.0, xtol=1e-12, guess=root * 1.01, slope=1.5)
+    for s in (cold, warm):
+        assert s.converged and not s.capped and s.beta == pytest.approx(root, rel=1e-10)
+    assert warm.evaluations < cold.evaluations
+    # The returned beta is the last point evaluated (its members can be reused).
+    seen = []
+    s = solve_beta_secant(lambda b: seen.append(b) or tau(b), 10.0, xtol=1e-12, guess=0.5)
+    assert seen[-1] == s.beta
+
+
+def test_secant_solver_caps_and_survives_a_jump():
+    capped = solve_beta_secant(lambda b: 5.0, 10.0, guess=0.7)  # tau < L0 always
+    assert capped.capped and capped.beta == 1.0
+    jump = solve_beta_secant(lambda b: 10.0 / 0.8 if b < 0.5 else 10.0 / 0.2, 10.0, xtol=1e-9,
+                             guess=0.4)
+    assert abs(jump.beta - 0.5) < 1e-6  # no root: the jump located
+
+
+@pytest.mark.parametrize("regime", ["slider", "soft"])
+@pytest.mark.parametrize("F_N", [0.1, 3.0])
+def test_beta_by_continuation_equals_cold_bracketed_solve(regime, F_N):
+    """A neighbour's beta as the start (as in a sweep) gives the beta of a cold solve,
+    and both satisfy beta = L0/<tau_out>(beta) with the vectorised bracketed solver."""
+    params = REGIMES[regime].replace(F_N=F_N)
+    cold = uniform_array(params)
+    neighbour = uniform_array(params.replace(k_r=params.k_r * 1.3))
+    warm = uniform_array(params, beta_guess=(neighbour.beta, neighbour.stats["beta_slope"]))
+    assert warm.beta == pytest.approx(cold.beta, rel=1e-5, abs=1e-6)
+    assert warm.FTx_over_mu0FN == pytest.approx(cold.FTx_over_mu0FN, abs=2e-3)
+    assert abs(warm.beta_residual) <= 1e-6 and abs(cold.beta_residual) <= 1e-6
+    # A cold bracketed solve (Brent on [BETA_MIN, 1]) of beta = L0/<tau_out>(beta),
+    # each <tau_out> a fixed-beta uniform array at the same tolerances.
+    bracketed = solve_beta_scalar(lambda b: params.L0 * uniform_array(params, beta=b).Nc_over_Nc0,
+                                  params.L0, xtol=1e-7)
+    assert bracketed.converged and not bracketed.capped
+    assert warm.beta == pytest.approx(bracketed.beta, rel=1e-4)

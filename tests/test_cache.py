@@ -1,15 +1,19 @@
 """The on-disk cache: hits, misses, corruption, staleness, concurrent writers, bad disks."""
 import errno
+import io
 import logging
 import multiprocessing
 import os
 import shutil
+import threading
+import tracemalloc
 
 import numpy as np
 import pytest
 
 from model import Params, SolverOptions
 from model import cache as cache_mod
+from model import cache_keys
 from model.cache import DiskCache, make_key
 
 
@@ -242,7 +246,7 @@ def test_clear_and_bad_input(cache):
 def test_changed_model_code_misses(cache, monkeypatch):
     cache.put(_key(), {"a": np.arange(3.0)})
     assert cache.get(_key()) is not None
-    monkeypatch.setattr(cache_mod, "code_digest", lambda: "edited-code")
+    monkeypatch.setattr(cache_keys, "code_digest", lambda: "edited-code")
     assert cache.get(_key()) is None  # results of other code are never returned
 
 
@@ -251,6 +255,138 @@ def test_code_digest_covers_computing_code_but_not_the_report_and_cli():
 
     root = Path(cache_mod.__file__).parent
     covered = {p.relative_to(root).parts[0] for p in root.rglob("*.py")} - set(
-        cache_mod.PRESENTATION)
+        cache_keys.PRESENTATION)
     assert {"uniform.py", "fixed.py", "_kernel", "params.py"} <= covered
     assert {"reproduce", "cli"} <= {p.name for p in root.iterdir()}
+
+
+# --------------------------------------------------------------------------- hostile folders
+
+def _zip_bomb(path, key_json, unpacked: int):
+    """An entry whose array member is ``unpacked`` bytes of zeros, deflated to ~1/1000."""
+    import zipfile
+
+    header = io.BytesIO()
+    np.lib.format.write_array_header_1_0(
+        header, {"descr": "<f8", "fortran_order": False, "shape": (unpacked // 8,)})
+    with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as archive:
+        with archive.open("F.npy", "w", force_zip64=True) as member:
+            member.write(header.getvalue())
+            chunk = bytes(1 << 20)
+            for _ in range(unpacked // len(chunk)):
+                member.write(chunk)
+        for name, text in (("__key__", key_json), ("__meta__", "{}"), ("__version__", "x"),
+                           ("__checksum__", "0")):
+            buf = io.BytesIO()
+            np.save(buf, np.array(text))
+            archive.writestr(name + ".npy", buf.getvalue())
+
+
+def test_oversize_entry_is_refused_before_it_is_unpacked(cache, caplog):
+    """0.06 MB on disk that would unpack to 64 MB: refused from the declared sizes, so the
+    read allocates next to nothing (it used to build the whole array first)."""
+    path = cache.file_for(_key())
+    cache.path.mkdir(parents=True)
+    _zip_bomb(path, cache_mod.canonical_json(_key()), 64 * 1024**2)
+    on_disk = path.stat().st_size
+    assert on_disk < 200_000
+    tracemalloc.start()
+    try:
+        with caplog.at_level(logging.WARNING, logger="model.cache"):
+            assert cache.get(_key()) is None
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert peak < 4 * on_disk + 500_000, f"{peak} bytes allocated to refuse {on_disk} bytes"
+    assert any("more than" in r.getMessage() for r in caplog.records)
+    assert not path.exists()  # discarded like any invalid entry
+
+
+def test_entry_larger_than_the_bound_on_disk_is_not_read(tmp_path, caplog):
+    small = DiskCache(tmp_path, max_entry_bytes=10_000)
+    assert small.put(_key(), _arrays())
+    assert small.get(_key()) is not None
+    big = {"F": np.zeros(5_000)}  # 40 kB: beyond the bound, so not written either
+    assert small.put(_key(tol=1e-4), big) is False and small.writable
+    DiskCache(tmp_path).put(_key(tol=1e-4), big)  # written by a cache with a larger bound
+    with caplog.at_level(logging.WARNING, logger="model.cache"):
+        assert small.get(_key(tol=1e-4)) is None
+    assert any("more than the 10000" in r.getMessage() for r in caplog.records)
+
+
+def _get_within(cache, key, seconds=10.0):
+    """``cache.get(key)`` in a thread; fails the test if it has not returned in time."""
+    result = {}
+    reader = threading.Thread(target=lambda: result.setdefault("value", cache.get(key)),
+                              daemon=True)
+    reader.start()
+    reader.join(seconds)
+    if reader.is_alive():
+        pytest.fail(f"cache.get blocked for more than {seconds:.0f} s")
+    return result["value"]
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no named pipes on this system")
+def test_named_pipe_at_an_entry_is_a_miss_not_a_hang(cache):
+    cache.path.mkdir(parents=True)
+    os.mkfifo(cache.file_for(_key()))
+    assert _get_within(cache, _key()) is None
+    compute = Counter()
+    _assert_same(cache.get_or_compute(_key(), compute), _arrays())
+    assert compute.calls == 1 and cache.file_for(_key()).is_file()  # the pipe was replaced
+    _assert_same(_get_within(cache, _key()), _arrays())
+
+
+def test_folder_at_an_entry_skips_that_entry_only(cache, caplog):
+    cache.path.mkdir(parents=True)
+    blocker = cache.file_for(_key())
+    blocker.mkdir()
+    (blocker / "inside").write_text("x")
+    with caplog.at_level(logging.WARNING, logger="model.cache"):
+        assert _get_within(cache, _key()) is None
+        assert cache.put(_key(), _arrays()) is False
+    assert cache.writable and DiskCache(cache.root).writable  # caching stays on
+    assert cache.put(_key(tol=1e-4), _arrays())
+    _assert_same(cache.get(_key(tol=1e-4)), _arrays())
+    assert blocker.is_dir() and not list(cache.path.glob("*.tmp"))
+
+
+@pytest.mark.skipif(not hasattr(os, "symlink"), reason="no symbolic links on this system")
+def test_symbolic_link_at_an_entry_is_not_followed(cache, tmp_path):
+    cache.put(_key(), _arrays())
+    elsewhere = tmp_path / "elsewhere.npz"
+    cache.file_for(_key()).rename(elsewhere)
+    cache.file_for(_key()).symlink_to(elsewhere)
+    assert cache.get(_key()) is None
+    assert elsewhere.exists()  # the link was removed, never its target
+
+
+def test_entries_are_still_checksummed_after_the_bounded_read(cache):
+    cache.put(_key(), _arrays())
+    _assert_same(cache.get(_key()), _arrays())
+    got = cache.get(_key())
+    got["F"][0, 0] = 42.0  # arrays come back writable, as numpy.load gives them
+    assert cache.get(_key())["F"][0, 0] != 42.0
+
+
+def test_writes_do_not_scan_the_folder_each_time(tmp_path, monkeypatch):
+    """Eviction used to stat every entry on every write (144 ms a write at 10 000
+    entries): now a scan comes once per tenth of the bound's worth of writes."""
+    c = DiskCache(tmp_path, max_entries=100)
+    for i in range(60):
+        c.put(_key(tol=1e-3 + i * 1e-6), _arrays())
+    scans = []
+    real = os.scandir
+
+    def counting(path):
+        scans.append(path)
+        return real(path)
+
+    monkeypatch.setattr(cache_mod.os, "scandir", counting)
+    writes = 100
+    for i in range(writes):
+        c.put(_key(tol=2e-3 + i * 1e-6), _arrays())
+    assert 1 <= len(scans) <= writes // 10 + 1, len(scans)
+    assert len(c.entries()) <= c.max_entries  # still bounded
+    newest = [_key(tol=2e-3 + i * 1e-6) for i in range(writes - 5, writes)]
+    assert all(c.get(k) is not None for k in newest)  # and the newest kept

@@ -116,8 +116,8 @@ BAD = [
     (["array", "--regime", "soft", "--F-N", "0"], "--F-N", "F_N=0.0 is invalid"),
     (["array", "--regime", "soft", "--beta", "1.5"], "--beta", "beta=1.5 is invalid"),
     (["array", "--regime", "soft", "--beta", "half"], "--beta", "'half' is not a number"),
-    (["array", "--regime", "soft", "--tol", "0"], "--tol", "tol=0.0 must be in"),
-    (["array", "--regime", "soft", "--rtol", "1"], "--rtol", "rtol=1.0 is outside"),
+    (["array", "--regime", "soft", "--tol", "0"], "--tol", "tol=0.0 is invalid"),
+    (["array", "--regime", "soft", "--rtol", "1"], "--rtol", "rtol=1.0 is invalid"),
     (["array", "--regime", "soft", "--orientation", "fixed", "--tol", "1e-2"], "--tol",
      "only with --orientation uniform"),
     (["array", "--regime", "soft", "--orientation", "uniform", "--theta0", "1"], "--theta0",
@@ -127,7 +127,7 @@ BAD = [
     (["sweep", "regime-map", "--n", "0", "--out", "x.csv"], "--n", "n=0 must be"),
     (["sweep", "regime-map", "--n", "2.5", "--out", "x.csv"], "--n", "'2.5' is not a whole number"),
     (["sweep", "stiffness", "--workers", "0", "--out", "x.csv"], "--workers", "workers=0 must be"),
-    (["sweep", "stiffness", "--tol", "1", "--out", "x.csv"], "--tol", "tol=1.0 must be in"),
+    (["sweep", "stiffness", "--tol", "1", "--out", "x.csv"], "--tol", "tol=1.0 is invalid"),
     (["sweep", "stiffness", "--F-N", "-2", "--out", "x.csv"], "--F-N", "F_N=-2.0 is invalid"),
     (["sweep", "load", "--F-N", "2", "--out", "x.csv"], "--F-N", "not used by the load sweep"),
     (["sweep", "regime-map", "--regime", "soft", "--out", "x.csv"], "--regime", "not used by"),
@@ -198,3 +198,133 @@ def test_progress_bar_redraws_on_a_terminal_and_logs_tenths_elsewhere():
     lines = log.getvalue().splitlines()
     assert "\r" not in log.getvalue() and len(lines) == 11
     assert lines[0].startswith("[..........] 1/20") and lines[-1].startswith("[##########] 20/20")
+
+
+# --------------------------------------------------------------------------- resources, --out
+
+@pytest.fixture
+def no_sweep(monkeypatch):
+    """Every sweep function replaced by one that fails the test: the checks below must
+    answer before any sweep starts (or builds its parameter sets)."""
+    from model.cli import sweep as sweep_cli
+
+    def started(**kwargs):
+        pytest.fail("the sweep started although its arguments were refused")
+
+    monkeypatch.setattr(sweep_cli, "SWEEPS", {k: (started, v[1])
+                                               for k, v in sweep_cli.SWEEPS.items()})
+
+
+HUGE = [
+    (["regime-map", "--n", "100000"], "--n", "10,000,000,000 points of the regime-map sweep"),
+    (["orientation", "--regime", "soft", "--n", "1e8"], "--n", "100,000,000 points"),
+    (["load", "--n", "1e12"], "--n", "4,000,000,000,000 points"),
+    (["stiffness", "--n", "1e11"], "--n", "600,000,000,000 points"),
+    (["load", "--workers", "100000"], "--workers", "100,000 worker processes"),
+]
+
+
+@pytest.mark.parametrize("argv, flag, detail", HUGE, ids=[" ".join(h[0]) for h in HUGE])
+def test_sweep_size_is_checked_against_memory_before_starting(capsys, tmp_path, no_sweep,
+                                                              argv, flag, detail):
+    code, out, err = run(capsys, "sweep", *argv, "--out", str(tmp_path / "x.csv"))
+    assert code == 2 and out == "" and err.count("\n") == 1, err
+    assert f"error: {flag}: " in err and detail in err and "of memory" in err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_orientation_sweep_of_1e8_angles_is_one_line_in_a_fresh_process(tmp_path):
+    """Once a traceback (the arrays of 1e8 contacts); now the usage error, exit 2."""
+    proc = subprocess.run(
+        [sys.executable, "-m", "model", "sweep", "orientation", "--regime", "soft", "--n",
+         "1e8", "--out", str(tmp_path / "polar.csv")],
+        capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 2 and proc.stdout == ""
+    assert proc.stderr.count("\n") == 1 and "Traceback" not in proc.stderr
+    assert proc.stderr.startswith("python -m model sweep: error: --n: ")
+
+
+def test_support_samples_are_checked_against_memory(capsys, monkeypatch):
+    from model.cli import _common
+
+    monkeypatch.setattr(_common, "memory_budget", lambda: 10_000_000)
+    code, out, err = run(capsys, "support", "--regime", "soft", "--samples", "1000000",
+                         "--json")
+    assert code == 2 and out == "" and err.count("\n") == 1
+    assert "error: --samples: 1,000,000 samples would need about" in err
+
+
+@pytest.mark.parametrize("kind", ["regime-map", "orientation"])
+def test_out_on_a_folder_is_refused_before_any_work(capsys, tmp_path, no_sweep, kind):
+    argv = ["sweep", kind, "--out", str(tmp_path)]
+    if kind == "orientation":
+        argv[2:2] = ["--regime", "soft"]
+    code, out, err = run(capsys, *argv)
+    assert code == 2 and out == "" and err.count("\n") == 1
+    assert "error: --out: " in err and "is a folder" in err
+
+
+def test_out_in_an_unwritable_folder_is_refused_before_any_work(capsys, tmp_path, no_sweep,
+                                                                monkeypatch):
+    """The check creates a file there (root ignores permission bits, so the refusal of a
+    read-only folder is simulated where the file is created)."""
+    import errno
+
+    from model.cli import _common
+
+    def refuse(*args, **kwargs):
+        raise PermissionError(errno.EACCES, "Permission denied")
+
+    monkeypatch.setattr(_common.tempfile, "mkstemp", refuse)
+    code, out, err = run(capsys, "sweep", "regime-map", "--out", str(tmp_path / "x.csv"))
+    assert code == 2 and out == "" and err.count("\n") == 1
+    assert "error: --out: cannot write into" in err and "Permission denied" in err
+
+
+def test_out_on_a_device_is_refused(capsys, no_sweep):
+    code, _, err = run(capsys, "sweep", "regime-map", "--out", os.devnull)
+    assert code == 2 and "is not a regular file" in err
+
+
+def test_csv_is_replaced_whole_or_not_at_all(capsys, tmp_path, monkeypatch):
+    """A write that fails half-way leaves the previous file as it was, and no temporary
+    file; a write that succeeds replaces it in one step."""
+    path = tmp_path / "polar.csv"
+    path.write_text("previous\n")
+
+    def half_then_fail(out, columns, header):
+        out.write("# kind: orientation\ntheta0,")
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(sweeps.csvfile, "write", half_then_fail)
+    code, _, err = run(capsys, "sweep", "orientation", "--regime", "stiff", "--n", "2",
+                       "--out", str(path))
+    assert code == 2 and "error: --out: cannot write" in err and "No space left" in err
+    assert path.read_text() == "previous\n"
+    assert [p.name for p in tmp_path.iterdir()] == ["polar.csv"]
+    monkeypatch.undo()
+    code, _, _ = run(capsys, "sweep", "orientation", "--regime", "stiff", "--n", "2",
+                     "--out", str(path))
+    assert code == 0 and sweeps.read_csv(path).kind == "orientation"
+    assert [p.name for p in tmp_path.iterdir()] == ["polar.csv"]
+    assert oct(path.stat().st_mode & 0o777) != oct(0o600)  # the mode of a file open() makes
+
+
+def test_reproduce_out_is_checked_before_any_work(capsys, tmp_path):
+    afile = tmp_path / "afile"
+    afile.write_text("x")
+    code, _, err = run(capsys, "reproduce", "--out", str(afile))
+    assert code == 2 and "error: --out: " in err and "not a folder" in err
+    code, _, err = run(capsys, "reproduce", "--out", str(afile / "below"))
+    assert code == 2 and "error: --out: cannot write into" in err
+
+
+def test_output_closed_early_is_a_quiet_exit(tmp_path):
+    """``... --json | head -c 10``: the reader leaves; exit 141 and no traceback."""
+    proc = subprocess.Popen([sys.executable, "-m", "model", "support", "--regime", "soft",
+                             "--samples", "2000", "--json"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc.stdout.read(10)
+    proc.stdout.close()
+    err = proc.stderr.read().decode()
+    assert proc.wait(timeout=120) == 141 and "Traceback" not in err, err

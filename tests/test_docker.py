@@ -32,7 +32,7 @@ from dockerfile_replay import (  # the replay of the image's build
     DOCKERFILE, IMAGE_PORT, parse_dockerfile, _only, env_of, exec_form, parse_healthcheck,
     run_segments, option_value, replace_option, dockerignore_patterns, ignored, context_files,
     dockerfile, image_env, _pip_install_args, _is_warmup, _check_pip_install, Replay,
-    replay_build, cache_snapshot)
+    replay_build, cache_snapshot, check_constraints)
 
 
 @pytest.fixture(scope="module")
@@ -108,11 +108,45 @@ def test_pip_installs_only_the_project_from_its_pyproject():
                 pip_args = _pip_install_args(argv)
                 if pip_args is not None:
                     _check_pip_install(pip_args, inst.line)
-                    for needed in ("pyproject.toml", "README.md", "model"):
+                    for needed in ("pyproject.toml", "README.md", "constraints.txt", "model",
+                                   "app"):
                         assert Path(workdir, needed) in copied, (
                             f"line {inst.line}: {needed} is not in {workdir} for `pip install .`")
                     installs += 1
     assert installs == 1, f"expected one `pip install .`, found {installs}"
+
+
+CONSTRAINTS_COMMAND = "python .ci/constraints.py"
+
+
+def test_constraints_pin_every_installed_package_at_the_tested_version():
+    """The image installs exactly the versions the tests run against: every pin is the
+    version installed here, and the file is what its documented command writes now (the
+    project's whole dependency closure, nothing else)."""
+    pins = check_constraints(ROOT / "constraints.txt")
+    assert {"numpy", "numba", "panel", "bokeh", "tornado", "param"} <= set(pins)
+    check = subprocess.run([sys.executable, ".ci/constraints.py", "--check"], cwd=ROOT,
+                           capture_output=True, text=True, timeout=120)
+    assert check.returncode == 0, check.stderr
+    assert CONSTRAINTS_COMMAND in DOCKERFILE.read_text()  # the Dockerfile says how to renew it
+
+
+def test_constraints_check_catches_a_version_the_tests_did_not_use(tmp_path):
+    stale = tmp_path / "constraints.txt"
+    stale.write_text((ROOT / "constraints.txt").read_text().replace(
+        f"numpy=={np_version()}", "numpy==1.0.0"))
+    with pytest.raises(AssertionError, match=r"numpy==1\.0\.0 \(here "):
+        check_constraints(stale)
+    loose = tmp_path / "loose.txt"
+    loose.write_text("numpy>=2\n")
+    with pytest.raises(AssertionError, match="not an exact"):
+        check_constraints(loose)
+
+
+def np_version() -> str:
+    import numpy
+
+    return numpy.__version__
 
 
 def test_dockerfile_runs_as_its_own_user():
@@ -172,7 +206,7 @@ def test_cmd_healthcheck_and_expose_agree():
 def test_dockerignore_keeps_the_build_inputs_only():
     patterns = dockerignore_patterns()
     copies = [s for i in dockerfile() if i.keyword == "COPY" for s in shlex.split(i.args)[:-1]]
-    assert {"pyproject.toml", "README.md", "model", "app"} <= set(copies)
+    assert {"pyproject.toml", "README.md", "constraints.txt", "model", "app"} <= set(copies)
     for source in copies:
         files = context_files(source, patterns)
         assert files, f"COPY {source}: .dockerignore leaves nothing of it"
@@ -210,7 +244,7 @@ def test_build_warmup_fills_the_numba_cache_for_the_installed_package(image):
 @pytest.mark.slow
 def test_build_fills_the_disk_cache_with_the_load_tab_curves(image):
     """The points the dashboard's Load tab asks for are read back, not computed."""
-    from app.compute import LOAD_F_N
+    from app.worker import LOAD_F_N
 
     results = Path(image.env["MICROPILLAR_CACHE_DIR"])
     before = cache_snapshot(results)
@@ -251,6 +285,11 @@ def test_image_command_serves_a_healthy_cdn_free_app(image, tmp_path):
         with urllib.request.urlopen(f"{base}/app", timeout=60) as response:
             assert response.status == 200
             html = response.read().decode()
+            headers = response.headers
+        # The image's pages cannot be framed by other sites nor their types sniffed.
+        assert headers.get("X-Frame-Options") == "SAMEORIGIN", dict(headers)
+        assert "frame-ancestors 'self'" in headers.get("Content-Security-Policy", "")
+        assert headers.get("X-Content-Type-Options") == "nosniff", dict(headers)
         scripts = re.findall(r'<script[^>]*\bsrc="([^"]+)"', html)
         assert any(re.search(r"(^|/)static/js/bokeh\.min\.js", s) for s in scripts), scripts
         assert any(re.search(r"extensions/panel/panel\.min\.js", s) for s in scripts), scripts

@@ -5,7 +5,7 @@ disk cache that cannot be written.
     (A future that raises is covered by tests/test_app_state.py.)
 (b) A session destroyed while its work runs (the browser went away) frees that work: its
     waiting job never starts, queued work is cancelled, a late result is dropped and the
-    runner lets go of the session's document.
+    result slot lets go of the session's document.
 (c) A read-only, full or impossible disk-cache folder degrades to no disk cache with one
     logged warning for a whole sweep, and the results are still computed. (Single
     ``DiskCache`` objects are covered by tests/test_cache.py.)
@@ -21,7 +21,6 @@ import logging
 import math
 import os
 import signal
-import sys
 import threading
 import time
 import weakref
@@ -30,14 +29,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-
-from app import jobs  # noqa: E402
-from app.jobs import LatestOnly  # noqa: E402
-from app.state import ExplorerState  # noqa: E402
-from model import cache as cache_mod  # noqa: E402
-from model.sweeps import regime_map  # noqa: E402
+from app import jobs, worker
+from app import slot as slots
+from app.slot import Request, Slot
+from app.state import ExplorerState
+from fakes import InProcessPool
+from model import cache as cache_mod
+from model.sweeps import regime_map
 
 
 # ---------------------------------------------------------------------- (a) failing runs
@@ -54,51 +52,40 @@ def _orbit(page):
     return np.asarray(page.support._sources["orbit"].data["x1"], dtype=float).copy()
 
 
-def _in_process(worker):
-    """A ``support_future`` that runs ``compute_support`` here, so patches of the worker
-    module (a smaller budget, a failing function) take effect."""
-    def support_future(params, beta="self", rtol=1e-6, samples=worker.SAMPLES):
-        future = cf.Future()
-        future.set_result(worker.compute_support(params, beta, rtol, samples))
-        return future
-    return support_future
+def _error(page, name="support"):
+    return page.results.errors.get(name, "")
 
 
 @pytest.mark.parametrize("budget, expected", [
-    (dict(max_steps=20), "step budget"),
-    (dict(tau_max=1.0), "time budget tau_max"),
+    (dict(MAX_STEPS=20), "step budget"),
+    (dict(simulate_support=functools.partial(worker.simulate_support, tau_max=1.0)),
+     "time budget tau_max"),
 ])
 def test_a_run_over_its_budget_shows_why_and_the_next_change_computes(dashboard, monkeypatch,
                                                                       budget, expected):
-    from app.views import support as support_view
-
-    worker = jobs.worker_module()
     state = dashboard.state
     state.reset()
-    assert dashboard.support.error == "" and not dashboard.alert.visible
-    monkeypatch.setattr(worker, "simulate_support",
-                        functools.partial(worker.simulate_support, **budget))
-    monkeypatch.setattr(support_view, "support_future", _in_process(worker))
+    assert _error(dashboard) == "" and not dashboard.alert.visible
+    for name, value in budget.items():
+        monkeypatch.setattr(worker, name, value)
+    monkeypatch.setattr(slots, "work_pool", InProcessPool)
     state.F_N = 2.0
-    data = dashboard.support.data
+    data = dashboard.results.support
     assert data.params.F_N == 2.0 and data.result is not None and not data.result.success
-    assert "did not reach its end" in dashboard.support.error
-    assert expected in dashboard.support.error
+    assert "did not reach its end" in _error(dashboard)
+    assert expected in _error(dashboard)
     assert dashboard.alert.visible and "did not reach its end" in dashboard.alert.object
     assert np.all(np.isfinite(_orbit(dashboard)))  # the partial contact is drawn, sanely
 
     monkeypatch.undo()  # the real workers again
     state.F_N = 3.0
-    data = dashboard.support.data
+    data = dashboard.results.support
     assert data.params.F_N == 3.0 and data.result.success
-    assert dashboard.support.error == "" and not dashboard.alert.visible
+    assert _error(dashboard) == "" and not dashboard.alert.visible
     state.reset()
 
 
 def test_a_model_that_raises_keeps_the_last_good_plots_and_recovers(dashboard, monkeypatch):
-    from app.views import support as support_view
-
-    worker = jobs.worker_module()
     state = dashboard.state
     state.reset()
     before = _orbit(dashboard)
@@ -107,46 +94,47 @@ def test_a_model_that_raises_keeps_the_last_good_plots_and_recovers(dashboard, m
         raise FloatingPointError("overflow in the friction law (simulated)")
 
     monkeypatch.setattr(worker, "fixed_orientation", broken)
-    monkeypatch.setattr(support_view, "support_future", _in_process(worker))
+    monkeypatch.setattr(slots, "work_pool", InProcessPool)
     state.theta0 = 120.0
-    assert "The model raised FloatingPointError" in dashboard.support.error
+    assert "The model raised FloatingPointError" in _error(dashboard)
     assert dashboard.alert.visible and "simulated" in dashboard.alert.object
     np.testing.assert_array_equal(_orbit(dashboard), before)  # the last good plots stay
 
     monkeypatch.undo()
     state.theta0 = 121.0
-    assert dashboard.support.error == "" and not dashboard.alert.visible
-    assert dashboard.support.data.params.theta0 == pytest.approx(math.radians(121.0))
+    assert _error(dashboard) == "" and not dashboard.alert.visible
+    assert dashboard.results.support.params.theta0 == pytest.approx(math.radians(121.0))
     assert not np.array_equal(_orbit(dashboard), before)
     state.reset()
 
 
 def test_a_worker_that_dies_mid_run_shows_a_message_and_a_new_worker_takes_over(
         dashboard, monkeypatch, caplog):
-    from app.views import support as support_view
-
     state = dashboard.state
     state.reset()
     before = _orbit(dashboard)
-    pool = jobs.process_pool("support")
+    pool = jobs.work_pool().executor("interactive")
     pid = pool.submit(os.getpid).result(timeout=120)
 
-    def dying(*args, **kwargs):
-        future = pool.submit(time.sleep, 60)  # a run that would take a minute ...
-        threading.Timer(0.5, os.kill, (pid, signal.SIGKILL)).start()  # ... killed (OOM)
-        return future
+    class Dying:
+        def submit(self, lane, key, fn, *args, **options):
+            if lane != "interactive":
+                return jobs.work_pool().submit(lane, key, fn, *args, **options)
+            threading.Timer(0.5, os.kill, (pid, signal.SIGKILL)).start()  # killed (OOM) ...
+            return jobs.work_pool().submit("interactive", None, time.sleep, 60)  # ... mid-run
 
-    monkeypatch.setattr(support_view, "support_future", dying)
+    monkeypatch.setattr(slots, "work_pool", Dying)
     state.F_N = 2.0
-    assert "BrokenProcessPool" in dashboard.support.error and dashboard.alert.visible
+    assert "BrokenProcessPool" in _error(dashboard) and dashboard.alert.visible
     np.testing.assert_array_equal(_orbit(dashboard), before)
 
     monkeypatch.undo()
     with caplog.at_level(logging.WARNING, logger=jobs.__name__):
         state.F_N = 3.0
-    assert dashboard.support.error == "" and not dashboard.alert.visible
-    assert dashboard.support.data.params.F_N == 3.0 and dashboard.support.data.result.success
-    assert jobs.process_pool("support") is not pool
+    assert _error(dashboard) == "" and not dashboard.alert.visible
+    data = dashboard.results.support
+    assert data.params.F_N == 3.0 and data.result.success
+    assert jobs.work_pool().executor("interactive") is not pool
     assert any("stopped" in r.getMessage() for r in caplog.records)
     state.reset()
 
@@ -154,7 +142,7 @@ def test_a_worker_that_dies_mid_run_shows_a_message_and_a_new_worker_takes_over(
 # ---------------------------------------------------------------------- (b) sessions that end
 
 class SessionDoc:
-    """What ``LatestOnly`` uses of a Bokeh server session's ``Document``, on an asyncio
+    """What a ``Slot`` uses of a Bokeh server session's ``Document``, on an asyncio
     loop; ``destroy()`` does what Bokeh does when it discards the session (the browser
     went away): it runs the ``on_session_destroyed`` callbacks once and forgets them.
     Any use after that is recorded in ``used_after_destroy``."""
@@ -223,12 +211,41 @@ async def _until(predicate, timeout_s: float = 30.0) -> None:
 
 @pytest.fixture
 def own_worker():
-    """A worker process of its own (one process, as each of the app's), shut down after."""
-    pool = jobs.process_pool("faults")
+    """A worker process of its own, shut down after."""
+    pool = cf.ProcessPoolExecutor(max_workers=1)
     pool.submit(abs, -1).result(timeout=120)  # started and warm
     yield pool
-    jobs._registry()[0].pop("faults", None)
     pool.shutdown(wait=True, cancel_futures=True)
+
+
+class Owner:
+    """What a ``Slot`` uses of its ``SessionResults``."""
+
+    LABELS = {}
+    session_id = 0
+
+    def __init__(self):
+        self.errors, self.busy = {}, set()
+
+    def _set_error(self, name, message):
+        self.errors[name] = message
+
+    def _set_busy(self, name, flag):
+        (self.busy.add if flag else self.busy.discard)(name)
+
+
+class Direct:
+    """A work pool that calls the job's function, which returns the future itself."""
+
+    def submit(self, lane, key, fn, *args, **options):
+        return fn(*args)
+
+
+def _slot(applied: list, tag: str):
+    """A slot whose requests come from ``made.next`` (a callable returning a future)."""
+    made = Slot(Owner(), tag, make=lambda: Request("any", None, made.next),
+                apply=applied.append)
+    return made
 
 
 def test_a_destroyed_session_frees_its_work(monkeypatch, own_worker):
@@ -236,7 +253,8 @@ def test_a_destroyed_session_frees_its_work(monkeypatch, own_worker):
     goes away. Session B's request must not wait for A's second run (never started), A's
     result must not be applied, and nothing may keep A's document alive."""
     current = {}
-    monkeypatch.setattr(jobs, "_session_doc", lambda: current.get("doc"))
+    monkeypatch.setattr(slots, "_session_doc", lambda: current.get("doc"))
+    monkeypatch.setattr(slots, "work_pool", Direct)
     pool = own_worker
     started, applied = [], {"A": [], "B": []}
 
@@ -249,52 +267,62 @@ def test_a_destroyed_session_frees_its_work(monkeypatch, own_worker):
     async def scenario():
         doc_a = SessionDoc("A")
         current["doc"] = doc_a
-        a = LatestOnly(lambda result, error: applied["A"].append(error))
-        a.submit(job("A1", 1.5))
+        a = _slot(applied["A"], "A")
+        a.next = job("A1", 1.5)
+        a.request()
         await asyncio.sleep(0.3)  # A1 runs in the worker
-        a.submit(job("A2", 1.5))  # waits for A1 (newest wins)
+        a.next = job("A2", 1.5)
+        a.request()  # waits for A1 (newest wins)
         assert started == ["A1"]
         doc_a.destroy()
-        a.submit(job("A3", 0.0))  # a late event of the ended session starts nothing
+        a.next = job("A3", 0.0)
+        a.request()  # a late event of the ended session starts nothing
 
         doc_b = SessionDoc("B")
         current["doc"] = doc_b
-        b = LatestOnly(lambda result, error: applied["B"].append(error))
-        b.submit(job("B1", 0.0))
+        b = _slot(applied["B"], "B")
+        b.next = job("B1", 0.0)
+        b.request()
         await _until(lambda: applied["B"])
-        await _until(lambda: not a._running)  # A1 has finished; A's runner is idle
+        await _until(lambda: not a._running)  # A1 has finished; A's slot is idle
         await asyncio.sleep(0.2)
         assert started == ["A1", "B1"]  # A2 was dropped with its session
         assert applied["A"] == [] and applied["B"] == [None]
+        assert b.owner.errors == {"B": ""}
         assert doc_a.used_after_destroy == [] and not doc_b.destroyed
         return weakref.ref(doc_a), a
 
-    doc_ref, runner = asyncio.run(scenario())
+    doc_ref, slot = asyncio.run(scenario())
     current.clear()
     gc.collect()
-    assert doc_ref() is None  # the runner keeps no reference to the ended session
+    assert doc_ref() is None  # the slot keeps no reference to the ended session
 
 
 def test_a_destroyed_session_cancels_its_queued_work(monkeypatch):
-    """Work still waiting in an executor's queue (behind other sessions' work) is
-    cancelled, so the worker never runs it; a timed request is never sent."""
+    """Work still waiting in a queue (behind other sessions' work) is cancelled, so the
+    worker never runs it; a delayed request is never sent."""
     current = {}
-    monkeypatch.setattr(jobs, "_session_doc", lambda: current.get("doc"))
-    queued = cf.Future()  # as returned by an executor whose worker is busy elsewhere
+    monkeypatch.setattr(slots, "_session_doc", lambda: current.get("doc"))
+    monkeypatch.setattr(slots, "work_pool", Direct)
+    queued = cf.Future()  # as returned by a pool whose workers are busy elsewhere
     started = []
 
     async def scenario():
         doc = SessionDoc("A")
         current["doc"] = doc
-        runner = LatestOnly(lambda result, error: pytest.fail("applied after the end"))
-        runner.submit(lambda: queued)
-        runner.submit_later(lambda: started.append("later") or cf.Future(), 50)
+        slot = Slot(Owner(), "A", make=lambda: Request("any", None, lambda: queued),
+                    apply=lambda value: pytest.fail("applied after the end"))
+        slot.request()
+        later = Slot(Owner(), "L", make=lambda: Request(
+            "any", None, lambda: started.append("later") or cf.Future()),
+            apply=lambda value: pytest.fail("applied after the end"), delay_ms=50)
+        later.request()
         await asyncio.sleep(0)
         doc.destroy()
         await asyncio.sleep(0.2)
         assert queued.cancelled()
         assert started == [] and doc.used_after_destroy == []
-        await _until(lambda: not runner._running, 5.0)
+        await _until(lambda: not slot._running, 5.0)
 
     asyncio.run(scenario())
 
@@ -358,13 +386,27 @@ def test_a_sweep_on_a_broken_disk_cache_computes_with_one_warning(
     assert [p for p in leftovers if p.is_file()] == []  # no entries, no temporary files
 
 
-def test_a_second_copy_of_the_app_package_shares_the_workers():
-    """Panel's liveness endpoint builds the app in a copy of the package: that copy must
-    hand work to the same worker processes, not start its own."""
-    import importlib.util
+def test_a_second_copy_of_the_app_shares_the_workers(monkeypatch):
+    """Panel's liveness endpoint builds the app a second time in the server process: both
+    copies must hand their work to the same worker processes, not start their own."""
+    from bokeh.application.handlers.directory import DirectoryHandler
+    from bokeh.document import Document
 
-    spec = importlib.util.spec_from_file_location("app_copy_jobs", jobs.__file__)
-    copy = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(copy)
-    assert copy is not jobs
-    assert copy.process_pool("support") is jobs.process_pool("support")
+    from app.views import Dashboard
+
+    app_dir = Path(jobs.__file__).parent
+    pool = jobs.work_pool()
+    built = []
+    original = Dashboard.from_session.__func__
+    monkeypatch.setattr(Dashboard, "from_session",
+                        classmethod(lambda cls: built.append(original(cls)) or built[-1]))
+    executors = {name: pool.executor(name) for name in jobs.LANES}
+    for _ in range(2):
+        handler = DirectoryHandler(filename=str(app_dir))
+        assert not handler.failed, handler.error
+        doc = Document()
+        handler.modify_document(doc)
+        assert not handler.failed, handler.error
+    assert len(built) == 2  # the page was built twice ...
+    assert jobs.work_pool() is pool  # ... on one pool of workers
+    assert {name: pool.executor(name) for name in jobs.LANES} == executors

@@ -1,7 +1,7 @@
-"""The paper's qualitative findings (MODEL.md, "What the paper reports", 1-7).
+"""The paper's qualitative findings (docs/model.md, "What the paper reports", 1-7).
 
 Each finding is checked on computed numbers. Where the model as specified in
-MODEL.md disagrees with the paper, the test is a strict xfail that states the
+docs/model.md disagrees with the paper, the test is a strict xfail that states the
 numbers: it fails loudly if the model ever starts to agree, so the record stays true.
 """
 import math

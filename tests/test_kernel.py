@@ -130,3 +130,23 @@ def test_kernel_exit_quantities_match_numpy():
                         k.stats, k.r_min)
     for name in ("F_x", "F_y", "U_el", "K", "energy_residual", "dtheta_rms", "dr_rms"):
         np.testing.assert_allclose(getattr(k, name), getattr(n, name), rtol=1e-12, atol=1e-14)
+
+
+def test_cold_start_is_announced(monkeypatch, capsys):
+    import io
+
+    from model.cli import main
+
+    stream = io.StringIO()
+    _kernel.integrate_batch(_kernel.initial_state(REGIMES["stiff"])[None],
+                            _kernel.pack(REGIMES["stiff"])[None], 1e-3, 1e-5, 0, 100, 1e5, False)
+    assert not _kernel.cache_is_cold()  # loaded in this process
+    monkeypatch.setattr(_kernel, "cache_is_cold", lambda: True)
+    assert _kernel.announce_cold_start(stream)
+    assert stream.getvalue().startswith("preparing the solver (first start, ~")
+    assert main(["support", "--regime", "stiff"]) == 0
+    assert "preparing the solver (first start" in capsys.readouterr().err
+    monkeypatch.setattr(_kernel, "cache_is_cold", lambda: False)
+    assert not _kernel.announce_cold_start(stream)
+    main(["support", "--regime", "stiff"])
+    assert "preparing" not in capsys.readouterr().err

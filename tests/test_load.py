@@ -1,10 +1,12 @@
 """The dashboard under concurrent sessions: ``benchmarks/load_test.py --quick`` (6 sessions
-moving sliders for 15 s against one ``panel serve app``, then a second, shorter round).
+against one ``panel serve app``: 15 s of the classroom profile, a move every ~3 s whether
+or not the last one's data came, then 6 s of the continuous-drag profile).
 
 Checked: no errors (no failed or stalled session, no traceback in the server's log),
-every session got its updates, the update latency stays bounded, the server's memory
-settles (bounded after cleanup, no growth from the second round) and the server destroys
-every closed session. The latencies themselves are reported by the script, not tested.
+every session of both rounds got its updates, the update latency stays bounded, the
+server's memory settles (bounded after cleanup, no growth from the second round) and the
+server destroys every closed session. The latencies themselves are reported by the
+script (with the issue's targets, met or not), not tested: this machine is shared.
 """
 import json
 import subprocess
@@ -31,15 +33,18 @@ def run_quick(out: Path, *extra) -> tuple[dict, subprocess.CompletedProcess]:
 def check(report: dict, done: subprocess.CompletedProcess, out: Path) -> None:
     sessions = report["settings"]["sessions"]
     assert report["n_errors"] == 0, "\n".join(report["errors"])
-    assert report["sessions_with_updates"] == sessions
-    assert report["updates"]["per_session_min"] >= 3  # each session kept getting updates
-    assert report["updates"]["all"]["p95_ms"] < P95_BOUND_MS
+    assert [r["profile"] for r in report["rounds"]] == ["class", "drag"]
+    for round_ in report["rounds"]:
+        assert round_["sessions_with_updates"] == sessions
+        # each session kept getting updates: a class session moves every 2-4 s
+        assert round_["updates"]["per_session_min"] >= 3, round_["updates"]
+        assert round_["updates"]["all"]["p95_ms"] < P95_BOUND_MS
     memory = report["memory_mb"]
     assert memory["after"]["total"] <= memory["bound_total"], memory
     assert memory["after_second_round"]["total"] <= memory["bound_total"], memory
     growth = memory["after_second_round"]["total"] - memory["after"]["total"]
     assert growth <= memory["second_round_growth_bound"], memory
-    for cleanup in (report["cleanup"], report["second_round"]["cleanup"]):
+    for cleanup in (r["cleanup"] for r in report["rounds"]):
         assert cleanup["destroyed"] == cleanup["sessions"] == sessions, cleanup
         assert cleanup["open_after"] == 0, cleanup
     assert report["destroyed_before_close"] == 0
@@ -51,3 +56,28 @@ def check(report: dict, done: subprocess.CompletedProcess, out: Path) -> None:
 def test_quick_load(tmp_path):
     report, done = run_quick(tmp_path)
     check(report, done, tmp_path)
+
+
+def _rss_mb() -> float:
+    for line in Path("/proc/self/status").read_text().splitlines():
+        if line.startswith("VmRSS:"):
+            return int(line.split()[1]) / 1024
+    return float("nan")
+
+
+@pytest.mark.skipif(not Path("/proc/self/status").exists() or sys.platform != "linux",
+                    reason="reads the resident memory from /proc")
+def test_memory_freed_by_ended_sessions_goes_back_to_the_system():
+    """What ``app.pages.release_memory`` (run a few seconds after sessions end) is for: the
+    heap keeps freed blocks that live objects are scattered between, as after a class."""
+    from app.pages import release_memory
+
+    release_memory()
+    blocks = [bytes(4000) for _ in range(40_000)]  # ~160 MB of heap blocks
+    kept = blocks[::50]  # a few stay alive all over the heap
+    del blocks
+    before = _rss_mb()
+    release_memory()
+    after = _rss_mb()
+    assert len(kept) == 800
+    assert before - after > 80, (before, after)  # most of the 160 MB is handed back

@@ -80,3 +80,15 @@ def test_frozen_and_hashable():
     with pytest.raises(dataclasses.FrozenInstanceError):
         o.rtol = 1e-6
     assert o == SolverOptions(rtol=1e-8, atol=1e-10) and hash(o) == hash(SolverOptions(rtol=1e-8))
+
+
+@pytest.mark.parametrize("call", ["uniform", "fixed"])
+def test_arrays_refuse_the_single_contact_reference_method(call):
+    from model import Params, fixed_orientation, uniform_array
+
+    params = Params(k_r=3.0, k_theta=0.01, F_N=1.0)
+    with pytest.raises(ValueError, match="method='reference' is for single contacts"):
+        if call == "uniform":
+            uniform_array(params, method="reference")
+        else:
+            fixed_orientation(params.replace(theta0=1.0), method="reference")

@@ -4,6 +4,7 @@ import math
 
 import pytest
 
+from model.beta import BETA_MIN
 from model.params import DEFAULTS, REGIMES, Params
 
 FIELDS = [f.name for f in dataclasses.fields(Params)]
@@ -30,9 +31,22 @@ def test_positive_fields_reject_zero_and_negative(name, bad):
         Params(**{"k_r": 1.0, "k_theta": 1.0, name: bad})
 
 
-@pytest.mark.parametrize("beta", [1e-12, 0.5, 1.0])
-def test_beta_in_half_open_unit_interval(beta):
+@pytest.mark.parametrize("beta", [BETA_MIN, 0.5, 1.0])
+def test_beta_in_its_physical_interval(beta):
     assert Params(1.0, 1.0, beta=beta).beta == beta
+
+
+@pytest.mark.parametrize("beta", [5e-324, 1e-12, 0.999 * BETA_MIN])
+def test_beta_below_its_physical_limit_is_rejected(beta):
+    """beta = N_c0/N_c < 1e-3 (contacts over a thousand slab lengths) gave energies of
+    1e285 W on the page; the bound is the one the self-consistent solver brackets, and the
+    controls read it."""
+    from model.controls import CONTROLS
+    from model.validation import BETA
+
+    assert BETA.bounds == CONTROLS["beta"].bounds == (BETA_MIN, 1.0) and BETA_MIN == 1e-3
+    with pytest.raises(ValueError, match=r"^beta=.* must be finite and in \[0\.001, 1\]"):
+        Params(1.0, 1.0, beta=beta)
 
 
 @pytest.mark.parametrize("beta", [1.0 + 1e-12, 2.0])
@@ -134,3 +148,22 @@ def test_regime_constructor_validates():
         Params.regime("rigid")
     with pytest.raises(ValueError, match="^F_N="):
         Params.regime("stiff", F_N=-1.0)
+
+
+def test_array_functions_refuse_fields_they_would_ignore():
+    """Per-call choices travel as arguments: a theta0 or beta in Params that an array
+    function would not use is an error naming the field and the fix."""
+    from model.params import check_array_params
+
+    base = Params(1.0, 1.0)
+    check_array_params(base, "uniform_array", "self", uses_theta0=False)
+    check_array_params(base.replace(theta0=2.0), "fixed_orientation", 0.5, uses_theta0=True)
+    check_array_params(base.replace(beta=0.5), "fixed_orientation", 0.5, uses_theta0=True)
+    with pytest.raises(ValueError, match=r"^theta0=2.0 is not used by uniform_array.*"
+                                         r"params.replace\(theta0=math.pi / 2\)"):
+        check_array_params(base.replace(theta0=2.0), "uniform_array", "self", uses_theta0=False)
+    for beta in ("self", 0.7):
+        with pytest.raises(ValueError, match=r"^beta=0.5 in params would be ignored by "
+                                             r"orientation_sweep.*pass beta=0.5"):
+            check_array_params(base.replace(beta=0.5), "orientation_sweep", beta,
+                               uses_theta0=False)

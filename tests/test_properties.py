@@ -26,7 +26,7 @@ from model.results import ACCURACY_FACTOR, SupportResult
 # low end open). The upper end is closed everywhere.
 RANGES = {
     "k_r": (0.0, 1e6, True), "k_theta": (0.0, 1e6, True), "F_N": (0.0, 1e3, True),
-    "theta0": (-2 * math.pi, 2 * math.pi, False), "beta": (0.0, 1.0, True),
+    "theta0": (-2 * math.pi, 2 * math.pi, False), "beta": (1e-3, 1.0, False),  # the solver's bracket
     "mu_s": (0.0, 100.0, True), "A": (0.0, 100.0, True), "B": (-1e4, 1e4, False),
     "zeta": (0.0, 1e6, True), "lam": (1e-4, 0.5, False), "L0": (0.0, 1e6, True),
 }

@@ -73,7 +73,7 @@ def test_fixed_array_is_finite_or_says_why(params, beta, rtol):
        beta=st.floats(0.05, 1.0))
 def test_orientation_sweep_rows_match_single_arrays(params, theta0, beta):
     """A batch of orientations gives each orientation's own fixed array (fixed beta)."""
-    s = orientation_sweep(params, theta0, beta=beta, rtol=1e-6)
+    s = orientation_sweep(params.replace(theta0=math.pi / 2), theta0, beta=beta, rtol=1e-6)
     assert s.theta0.shape == s.FTx_over_mu0FN.shape == s.success.shape == (len(theta0),)
     for i, t in enumerate(theta0):
         one = fixed_orientation(params.replace(theta0=t), beta=beta, rtol=1e-6)
@@ -89,7 +89,7 @@ def test_orientation_sweep_rows_match_single_arrays(params, theta0, beta):
           suppress_health_check=[HealthCheck.too_slow])
 @given(params=BOX, beta=BETA, tol=log_uniform(1e-2, 0.2))
 def test_uniform_array_is_finite_or_says_why(params, beta, tol):
-    r = uniform_array(params, beta=beta, tol=tol)
+    r = uniform_array(params.replace(theta0=math.pi / 2), beta=beta, tol=tol)
     assert r.message and r.n_members >= 60 and r.n_members % 15 == 0
     assert r.n_failed == len(r.failed_theta0) and 0 <= r.n_pivot <= r.n_members
     assert r.FTy_over_mu0FN == 0.0  # mirror symmetry
@@ -113,6 +113,7 @@ def test_uniform_array_is_finite_or_says_why(params, beta, tol):
 def test_interval_budget_keeps_the_error_estimate_honest(params, max_intervals):
     """Out of intervals, the average is still over all of [0, pi]: it stays within a
     small multiple of its (coarse) error estimate of the converged value."""
+    params = params.replace(theta0=math.pi / 2)  # a uniform array covers every theta0
     full = uniform_array(params, beta=1.0, tol=1e-4)
     cut = uniform_array(params, beta=1.0, tol=1e-4, max_intervals=max_intervals)
     assert cut.stats["intervals"] <= max(4, max_intervals)

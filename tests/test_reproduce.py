@@ -2,9 +2,10 @@
 the app): a coarse reproduction into a temporary folder.
 
 Every figure file and CSV must exist and be non-empty, the CSVs must carry their
-parameters and read back, and the report must list every finding of MODEL.md with a
+parameters and read back, and the report must list every finding of docs/model.md with a
 verdict. PNGs are required where a browser is (always in CI).
 """
+import json
 import math
 import re
 
@@ -20,7 +21,7 @@ from model.reproduce import FIGURES
 from model.reproduce import reproduce as compute_only
 from model.sweeps import read_csv
 
-from browser.conftest import browser_required
+from browser.conftest import browser_required, unavailable
 
 PAPER_FIGURES = {"3", "5a", "5b", "6", "7a", "7b", "8a", "8b", "10a", "10b", "10c", "10d",
                  "10e", "10f", "11a", "11b", "11c"}
@@ -79,7 +80,7 @@ def test_report_lists_every_finding_with_a_verdict(coarse):
     assert len(rows) == len(rep.checks) >= 25
     assert all(("**agrees**" in r) != ("**differs**" in r) for r in rows)
     assert f"{len(rep.checks) - rep.n_differ} of {len(rep.checks)} checks agree" in text
-    # Known differences stay visible (MODEL.md mu0 ~ 1.0085; the pendulum stretches).
+    # Known differences stay visible (the quoted mu0 ~ 1.0085; the pendulum stretches).
     assert "1.00824" in text and "Where the model and the paper differ" in text
     assert "## Sensitivity" in text and "200 random supports" in text
 
@@ -99,7 +100,7 @@ def test_checks_use_the_computed_numbers(coarse):
     assert float(stiff.value) == pytest.approx(rep.data.headline["stiff"].FTx_over_mu0FN,
                                                abs=1e-4)
     mu = by_quantity["μ(1) with μ_s = 1.3, A = 1.44, B = −20, ζ = 10"]
-    assert not mu.agrees  # 1.00824, not MODEL.md's 1.0085
+    assert not mu.agrees  # 1.00824, not the quoted 1.0085
 
 
 def test_sensitivity_variants(coarse):
@@ -171,3 +172,122 @@ def test_cli_out_must_be_a_folder(tmp_path, capsys):
 def test_bad_resolution_in_python():
     with pytest.raises(ValueError, match="resolution='fine'"):
         reproduce("unused", resolution="fine")
+
+
+# --------------------------------------------------------------------------- figures for papers
+
+import xml.etree.ElementTree as ET  # noqa: E402
+
+from bokeh.models import Plot  # noqa: E402
+
+from app.about import version_text  # noqa: E402
+from app.reproduce import draw  # noqa: E402
+
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+@pytest.fixture(scope="module")
+def vector(coarse, tmp_path_factory):
+    """The coarse reproduction's figures drawn again as SVG and PDF only."""
+    if browser_problem():
+        unavailable(f"SVG/PDF pictures need Chromium: {browser_problem()}")
+    rep, _ = coarse
+    out = tmp_path_factory.mktemp("vector")
+    files, note = draw(rep.data, out, lambda done, total: None, formats=("svg", "pdf"))
+    return rep, out, files, note
+
+
+def _svg_texts(root) -> str:
+    return " ".join("".join(t.itertext()) for t in root.iter(f"{SVG}text"))
+
+
+def _pdf_title(data: bytes) -> str:
+    found = re.search(rb"/Title\s*(\((?P<lit>[^)]*)\)|<(?P<hex>[0-9A-Fa-f]+)>)", data)
+    assert found, "the PDF has no title"
+    if found.group("hex"):
+        return bytes.fromhex(found.group("hex").decode()).decode("utf-16")
+    return found.group("lit").decode("latin-1")
+
+
+def test_every_figure_as_svg_and_pdf(vector):
+    rep, out, files, note = vector
+    assert note == ""
+    assert set(files) == {f.key for f in FIGURES}
+    for key, (html, png, svg, pdf) in files.items():
+        assert html.is_file() and png is None  # exactly the formats asked for
+        assert svg == out / f"{key}.svg" and pdf == out / f"{key}.pdf"
+    assert not list(out.glob("*.pdf.svg"))  # no intermediate files left
+
+
+@pytest.mark.parametrize("key", sorted(DRAW))
+def test_svg_parses_and_holds_the_figure(vector, key):
+    rep, out, files, _ = vector
+    root = ET.parse(files[key][2]).getroot()
+    assert root.tag == f"{SVG}svg"
+    width, height = float(root.get("width")), float(root.get("height"))
+    assert width >= 300 and height >= 200
+    # Vector drawing: lines and markers are paths, text is text.
+    assert len(list(root.iter(f"{SVG}path"))) > 20
+    texts = _svg_texts(root)
+    model = DRAW[key](rep.data)
+    plots = list(model.select({"type": Plot}))
+    assert plots
+    for plot in plots:
+        if plot.title is not None and plot.title.text:
+            assert plot.title.text in texts, (key, plot.title.text)
+        for axis in (*plot.xaxis, *plot.yaxis):
+            if axis.axis_label and "$" not in str(axis.axis_label):
+                assert str(axis.axis_label) in texts, (key, axis.axis_label)
+    # Named for what it is, with the version (as the CSV header has it).
+    spec = next(f for f in FIGURES if f.key == key)
+    assert root.find(f"{SVG}title").text == f"Fig. {spec.number}: {spec.caption}"
+    meta = json.loads(root.find(f"{SVG}metadata").text)
+    assert meta["software"] == version_text() and meta["paper_doi"].startswith("10.1038/")
+
+
+@pytest.mark.parametrize("key", ["fig3", "fig5a", "fig11a"])
+def test_pdf_is_one_vector_page_the_size_of_the_svg(vector, key):
+    _, _, files, _ = vector
+    data = files[key][3].read_bytes()
+    assert data.startswith(b"%PDF-")
+    assert len(re.findall(rb"/Type\s*/Page[^s]", data)) == 1
+    assert b"/FontFile" in data  # text kept as text, not pixels
+    box = [float(v) for v in re.search(rb"/MediaBox\s*\[([^\]]*)\]", data).group(1).split()]
+    root = ET.parse(files[key][2]).getroot()
+    # Chromium prints 96 px to 72 pt.
+    assert box[2] == pytest.approx(float(root.get("width")) * 0.75, abs=1.5)
+    assert box[3] == pytest.approx(float(root.get("height")) * 0.75, abs=1.5)
+    assert version_text() in _pdf_title(data)
+
+
+def test_the_version_is_in_every_exported_file(coarse):
+    rep, _ = coarse
+    from PIL import Image
+
+    for f in rep.figures:
+        assert f"# version: {rep.version}" in f.csv.read_text(encoding="utf-8")
+        head = f.html.read_text(encoding="utf-8")[:5000]
+        assert f"({version_text()})</title>" in head
+        if f.png is not None:
+            with Image.open(f.png) as image:
+                assert image.text["Software"] == version_text()
+    assert rep.version in rep.index.read_text(encoding="utf-8")
+    assert rep.version in rep.report.read_text(encoding="utf-8")
+
+
+def test_format_flag_bad_usage(capsys, monkeypatch, tmp_path):
+    import app.reproduce.__main__ as cli_main
+
+    assert app_main(["--out", str(tmp_path), "--format", "eps"]) == 2
+    assert "--format" in capsys.readouterr().err
+    assert app_main(["--out", str(tmp_path), "--format", "svg", "--no-png"]) == 2
+    assert "--no-png" in capsys.readouterr().err
+    monkeypatch.setattr(cli_main, "browser_problem", lambda: "no Chromium found")
+    assert app_main(["--out", str(tmp_path / "x"), "--format", "svg"]) == 2
+    err = capsys.readouterr().err
+    assert "--format" in err and "no Chromium found" in err and not (tmp_path / "x").exists()
+
+
+def test_bad_formats_in_python():
+    with pytest.raises(ValueError, match="formats="):
+        reproduce("unused", resolution="coarse", formats=("eps",))

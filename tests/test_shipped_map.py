@@ -8,7 +8,7 @@ import pytest
 
 import model
 from model import Params, uniform_array
-from model.shipped_map import (RegimeMap, compute_regime_map, load_regime_map, main,
+from model.shipped_map import (SHIPPED_LOADS, RegimeMap, compute_regime_map, load_regime_map, main,
                               packaged_path, save_regime_map)
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -117,3 +117,29 @@ def test_regime_map_name_stays_the_sweep_function():
     import model.shipped_map  # noqa: F401  (a submodule import must not shadow the function)
 
     assert callable(model.regime_map) and model.regime_map.__module__ == "model.sweeps"
+
+
+@pytest.mark.parametrize("F_N", SHIPPED_LOADS)
+def test_each_shipped_load_is_packaged_and_recomputes(F_N):
+    """Every shipped load: settings recorded, grid as at F_N = 1, and points of the
+    stiff row (cheap) and the soft corner recomputed from scratch match."""
+    m = load_regime_map(F_N=F_N)
+    meta = m.metadata
+    assert meta["F_N"] == F_N and m.shape == (24, 24) and meta["beta_mode"] == "self"
+    assert meta["tol"] == 1e-3 and packaged_path(F_N).is_file()
+    np.testing.assert_allclose(m.k_r, load_regime_map().k_r)
+    assert np.all(m.quadrature_error[m.success] <= meta["tol"])
+    np.testing.assert_allclose(m.beta[m.success] * m.Nc_over_Nc0[m.success], 1.0, atol=1e-3)
+    for i, j in [(-1, -1), (-1, 0), (0, 0)]:
+        r = uniform_array(Params(m.k_r[i], m.k_theta[j], F_N=F_N), tol=meta["tol"],
+                          rtol=meta["rtol"], method=meta["method"])
+        assert r.success == m.success[i, j]
+        assert abs(r.FTx_over_mu0FN - m.FTx_over_mu0FN[i, j]) <= 2 * m.quadrature_error[i, j] + 1e-6
+        assert abs(r.Nc_over_Nc0 - m.Nc_over_Nc0[i, j]) <= 2 * r.quadrature_error["Nc_over_Nc0"] + 1e-6
+        assert abs(r.beta - m.beta[i, j]) <= 1e-3 * meta["tol"] + 1e-6
+
+
+def test_unshipped_load_is_named():
+    with pytest.raises(ValueError, match=r"F_N=2.*0\.1, 0\.3, 1, 3, 10"):
+        load_regime_map(F_N=2.0)
+    assert load_regime_map(F_N=1).metadata == load_regime_map().metadata

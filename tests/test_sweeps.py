@@ -40,14 +40,19 @@ def test_regime_map_grid_and_columns(reference_map):
     np.testing.assert_array_equal(r.columns["k_theta"], [0.01, 3.0, 0.01, 3.0])
     assert r.columns["success"].dtype == bool and r.columns["success"].all()
     assert r.settings["tol"] == 0.01 and r.settings["beta"] == "self" and r.settings["F_N"] == 1.0
-    # Self-consistent load factor: beta = N_c0/N_c (MODEL.md "Contact count").
+    # Self-consistent load factor: beta = N_c0/N_c (docs/model.md, "Contact count").
     np.testing.assert_allclose(r.columns["beta"] * r.columns["Nc_over_Nc0"], 1.0, rtol=2e-2)
     assert np.all(r.columns["Nc_over_Nc0"] >= 1.0)
-    # Each row is exactly the uniform array at that point.
+    # The first point of each k_theta row starts cold: exactly the uniform array there.
+    direct = uniform_array(Params(0.01, 0.01), tol=1e-2)
+    assert r.columns["FTx_over_mu0FN"][0] == direct.FTx_over_mu0FN
+    assert r.columns["FTx_over_mu0FN_duration"][0] == direct.FTx_over_mu0FN_duration
+    assert r.columns["quadrature_error_FTx"][0] == direct.quadrature_error["FTx_over_mu0FN"]
+    # The next is continued from its beta: the same array to within the tolerance.
     direct = uniform_array(Params(0.01, 3.0), tol=1e-2)
-    assert r.columns["FTx_over_mu0FN"][1] == direct.FTx_over_mu0FN
-    assert r.columns["FTx_over_mu0FN_duration"][1] == direct.FTx_over_mu0FN_duration
-    assert r.columns["quadrature_error_FTx"][1] == direct.quadrature_error["FTx_over_mu0FN"]
+    assert r.columns["beta"][1] == pytest.approx(direct.beta, rel=1e-3)
+    assert r.columns["FTx_over_mu0FN"][1] == pytest.approx(direct.FTx_over_mu0FN, rel=1e-2)
+    assert r.columns["Nc_over_Nc0"][1] == pytest.approx(direct.Nc_over_Nc0, rel=1e-2)
 
 
 def test_csv_round_trip(reference_map, tmp_path):
@@ -99,7 +104,7 @@ def test_orientation_table_matches_orientation_sweep():
     r = sweeps.orientation_table("slider", n=5)
     assert r.kind == "orientation" and len(r) == 5
     assert list(r.columns) == ["theta0", "FTx_over_mu0FN", "FTy_over_mu0FN", "Dy_over_Dx",
-                               "Nc_over_Nc0", "dtheta_rms", "dr_rms", "beta", "pivot_approach",
+                               "Nc_over_Nc0", "dtheta_rms", "dr_rms", "r_max", "beta", "pivot_approach",
                                "relative_residual", "success"]
     midpoints = (np.arange(5) + 0.5) * math.pi / 5  # off the exact axis orientations
     np.testing.assert_array_equal(r.columns["theta0"], midpoints)
@@ -235,3 +240,30 @@ def test_sweep_points_come_from_the_disk_cache(tmp_path, monkeypatch):
 def test_bad_max_intervals_is_named_before_any_work(bad):
     with pytest.raises(ValueError, match="max_intervals="):
         sweeps.regime_map(n=1, max_intervals=bad)
+
+
+def test_grid_plan_covers_every_point_once_coarse_first():
+    inner, phases = sweeps._grid_plan(24, 24)
+    assert inner == 24 and len(phases) == 2
+    first = sorted(i for chain in phases[0] for i in chain)
+    assert len(first) == 64  # an 8 x 8 subgrid ...
+    rows, cols = sorted({i // 24 for i in first}), sorted({i % 24 for i in first})
+    assert rows[0] == cols[0] == 0 and rows[-1] == cols[-1] == 23  # ... with both ends
+    every = sorted(i for phase in phases for chain in phase for i in chain)
+    assert every == list(range(24 * 24))
+    # Each chain runs along the inner axis of one outer value.
+    assert all(len({i // 24 for i in chain}) == 1 for phase in phases for chain in phase)
+    assert sweeps._grid_plan(3, 5)[1] == [[[0, 1, 2, 3, 4], [5, 6, 7, 8, 9], [10, 11, 12, 13, 14]]]
+
+
+def test_regime_map_hands_out_the_coarse_subgrid_first(tmp_path, monkeypatch):
+    monkeypatch.setenv("MICROPILLAR_CACHE_DIR", str(tmp_path))
+    seen = []
+    k = np.logspace(-1, 0, 9)
+    r = sweeps.regime_map(k_r=k[-2:], k_theta=k, tol=1e-2, coarse=seen.append)
+    assert len(seen) == 1 and len(seen[0]) == 2 * 8
+    full = {(a, b): f for a, b, f in zip(r.columns["k_r"], r.columns["k_theta"],
+                                        r.columns["FTx_over_mu0FN"])}
+    for a, b, f in zip(*(seen[0].columns[c] for c in ("k_r", "k_theta", "FTx_over_mu0FN"))):
+        assert full[(a, b)] == f  # the same points, not recomputed
+    assert np.all(r.columns["success"])

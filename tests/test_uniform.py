@@ -65,7 +65,9 @@ def test_rigid_limit():
 def test_result_is_cached_and_serialisable():
     a = uniform_array(REGIMES["stiff"], tol=2e-3)
     assert uniform_array(REGIMES["stiff"], tol=2e-3) is a
-    assert uniform_array(REGIMES["stiff"].replace(theta0=1.0), tol=2e-3) is a  # theta0 ignored
+    # A theta0 the uniform array would not use is refused, not silently ignored.
+    with pytest.raises(ValueError, match=r"^theta0=1.0 is not used by uniform_array"):
+        uniform_array(REGIMES["stiff"].replace(theta0=1.0), tol=2e-3)
     d = a.to_dict()
     for key in ("FTx_over_mu0FN", "FTx_over_mu0FN_duration", "FTy_over_mu0FN", "Dy_over_Dx",
                 "Nc_over_Nc0", "beta", "work_split", "quadrature_error", "success", "message"):

@@ -18,8 +18,8 @@ The module imports Bokeh only (no Panel): ``python -m model reproduce`` draws wi
 from .arrays import (load_curve_data, load_figure, load_now, load_regimes_data, map_data,
                      map_now, regime_map_figure, value_range)
 from .common import annotation, sources, style, update
-from .histories import (energy_data, energy_figure, force_data, force_now, forces_figure,
-                        friction_law_figure, friction_now)
+from .histories import (energy_data, energy_figure, force_data, force_now, force_x_range,
+                        force_y_range, forces_figure, friction_law_figure, friction_now)
 from .orientation import (components_data, components_figure, radius_figure, rms_data,
                           rms_figure)
 from .polar import QUANTITIES as POLAR_QUANTITIES
@@ -29,7 +29,7 @@ from .stiffness import (contact_count_data, contact_count_figure, work_split_dat
                         work_split_figure)
 
 __all__ = ["scene_figure", "scene_data", "scene_frame", "time_text", "forces_figure",
-           "force_data", "force_now", "friction_law_figure", "friction_now", "energy_figure",
+           "force_data", "force_now", "force_x_range", "force_y_range", "friction_law_figure", "friction_now", "energy_figure",
            "energy_data", "polar_figure", "polar_data", "polar_now", "set_extent",
            "POLAR_QUANTITIES", "regime_map_figure", "map_data", "map_now", "value_range",
            "load_figure", "load_curve_data", "load_regimes_data", "load_now", "annotation",

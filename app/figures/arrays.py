@@ -16,6 +16,7 @@ from bokeh.palettes import Cividis256, Viridis256
 
 from model.params import REGIMES
 
+from ..state import K_MID
 from .common import BLACK, GREY, REGIME_COLORS, VERMILION, new_figure, source
 
 MAP_QUANTITIES = {
@@ -38,7 +39,12 @@ def map_column(quantity: str, average: str = "paper") -> str:
 
 
 def map_data(regime_map, quantity: str = "5a", average: str = "paper") -> dict:
-    """Cells of the map, one row per (k_r, k_theta), with ``value`` the shown quantity."""
+    """Cells of the map, one row per (k_r, k_theta), with ``value`` the shown quantity
+    (no cells while there is no map)."""
+    if regime_map is None:
+        return {"regime_map": {k: [] for k in ("k_r", "k_theta", "left", "right", "bottom",
+                                               "top", "value", "FTx", "FTx_duration", "DyDx",
+                                               "Nc")}}
     er, et = _edges(regime_map.k_r), _edges(regime_map.k_theta)
     i, j = np.meshgrid(np.arange(regime_map.k_r.size), np.arange(regime_map.k_theta.size),
                        indexing="ij")
@@ -81,6 +87,11 @@ def regime_map_figure(regime_map, quantity: str = "5a", average: str = "paper",
                      fill_color={"field": "value", "transform": mapper}, line_color=None)
     fig.hover.renderers = [cells]
     fig.add_layout(ColorBar(color_mapper=mapper, width=12, name="regime_map_colorbar"), "right")
+    # Where the page's regime text switches (quadrants about the log-midpoint of the axes).
+    for dimension in ("width", "height"):
+        fig.add_layout(Span(location=K_MID, dimension=dimension, line_color="white",
+                            line_dash="dashed", line_width=2, line_alpha=0.9,
+                            name=f"regime_boundary_{dimension}"))
     names = list(REGIMES)
     fig.scatter([REGIMES[n].k_r for n in names], [REGIMES[n].k_theta for n in names],
                 marker="diamond", size=12, fill_color="white", line_color=BLACK)
@@ -132,8 +143,8 @@ def load_figure(regimes=None, points=None, current=None, average: str = "paper",
                      x_axis_label="F_N (normal load)", y_axis_label="F_T,x / (μ₀ F_N)",
                      tooltips=[("F_N", "@F_N{0.000}"), ("F_T,x/(μ₀F_N)", "@value{0.0000}")])
     reg = source("load_regimes", load_regimes_data(regimes, average)["load_regimes"])
-    fig.multi_line("xs", "ys", source=reg, line_color="color", line_width=2, line_alpha=0.55,
-                   legend_field="regime")
+    fig.multi_line("xs", "ys", source=reg, line_color="color", line_width=3, line_alpha=0.95,
+                   line_dash="dashed", legend_field="regime")
     curve = source("load_curve", load_curve_data(points or {}, average)["load_curve"])
     line = fig.line("F_N", "value", source=curve, line_color=BLACK, line_width=3,
                     legend_label="current k_r, k_θ")

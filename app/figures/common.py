@@ -7,7 +7,8 @@ axes are kept and nothing flickers) and browser tests can find them in
 """
 from __future__ import annotations
 
-from bokeh.models import ColumnDataSource, GlyphRenderer, Label, Legend, Text, Title
+from bokeh.models import (ColorBar, ColumnDataSource, GlyphRenderer, Label, Legend, Text,
+                          Title)
 from bokeh.plotting import figure
 
 #: Okabe-Ito colours: distinguishable with colour-blindness and on a projector.
@@ -19,9 +20,9 @@ TOOLS = "pan,wheel_zoom,box_zoom,reset,save"
 LINE = 2.0
 
 
-def new_figure(name: str, title: str, width: int, height: int, **kwargs):
+def new_figure(name: str, title: str, width: int, height: int, tools: str = TOOLS, **kwargs):
     """A figure with the dashboard's tools (save included) and styling."""
-    fig = figure(name=name, title=title, width=width, height=height, tools=TOOLS,
+    fig = figure(name=name, title=title, width=width, height=height, tools=tools,
                  toolbar_location="right", **kwargs)
     fig.toolbar.logo = None
     fig.toolbar.autohide = True
@@ -35,9 +36,14 @@ def source(name: str, data: dict) -> ColumnDataSource:
 
 
 def sources(fig) -> dict:
-    """The named data sources of ``fig``: name -> ColumnDataSource."""
-    return {r.data_source.name: r.data_source for r in fig.renderers
-            if isinstance(r, GlyphRenderer) and r.data_source.name}
+    """The named data sources of ``fig`` (glyphs' and annotations'): name -> source."""
+    named = {r.data_source.name: r.data_source for r in fig.renderers
+             if isinstance(r, GlyphRenderer) and r.data_source.name}
+    for model in (*fig.center, *fig.above, *fig.below, *fig.left, *fig.right):
+        src = getattr(model, "source", None)
+        if isinstance(src, ColumnDataSource) and src.name:
+            named[src.name] = src
+    return named
 
 
 def annotation(fig, name: str):
@@ -78,12 +84,30 @@ def _scale_text(model, scale: float) -> None:
     model.text_font_size = f"{round(float(base[3:]) * scale)}px"
 
 
+def legend_above(fig) -> None:
+    """Move the figure's legends out of the plot area to a compact row above it, so they
+    hide no curve (e.g. F_f,y under a legend in the lower right)."""
+    for legend in [m for m in fig.center if isinstance(m, Legend)]:
+        fig.center = [m for m in fig.center if m is not legend]
+        legend.update(orientation="horizontal", location="top_left", padding=1, spacing=8,
+                      margin=0, glyph_width=16, label_standoff=3, border_line_alpha=0,
+                      background_fill_alpha=0)
+        fig.add_layout(legend, "above")
+
+
+#: Ticks wanted on an axis: fewer in projector mode, where the labels are larger.
+TICKS = {False: 6, True: 4}
+
+
 def style(fig, projector: bool) -> None:
-    """Screen (False) or projector (True) look: font sizes, line widths, grid contrast."""
+    """Screen (False) or projector (True) look: font sizes, line widths, grid contrast,
+    tick density, legends and colour bars."""
     scale = 1.5 if projector else 1.0
     label, tick = f"{round(12 * scale)}px", f"{round(11 * scale)}px"
-    title = "15px" if projector else "12px"
+    title = "18px" if projector else "12px"
     for axis in (*fig.xaxis, *fig.yaxis):
+        if hasattr(axis.ticker, "desired_num_ticks"):
+            axis.ticker.desired_num_ticks = TICKS[projector]
         axis.axis_label_text_font_size = label
         axis.major_label_text_font_size = tick
         axis.axis_label_text_font_style = "normal"
@@ -104,6 +128,26 @@ def style(fig, projector: bool) -> None:
             renderer.glyph.line_width = base * (2.0 if projector else 1.0)
         if isinstance(renderer.glyph, Text):
             _scale_text(renderer.glyph, scale)
-    for label in (m for m in layouts if isinstance(m, Label)):
-        _scale_text(label, scale)
+    for text in (m for m in layouts if isinstance(m, Label)):
+        _scale_text(text, scale)
+    for bar in (m for m in layouts if isinstance(m, ColorBar)):
+        bar.major_label_text_font_size = tick
+        bar.title_text_font_size = label
+        bar.width = 14 if projector else 8
     fig.outline_line_color = BLACK if projector else "#dddddd"
+
+
+def legend_below(fig, spacing: int = 6) -> None:
+    """The legend in one row under the plot, where it hides no curve or glyph."""
+    legend = fig.legend[0]
+    legend.orientation = "horizontal"
+    legend.label_text_font_size = "10px"
+    legend.background_fill_alpha = 0.6
+    legend.click_policy = "hide"
+    legend.padding = 1
+    legend.spacing = spacing
+    legend.margin = 2
+    legend.glyph_width = 14
+    legend.label_standoff = 2
+    fig.center = [m for m in fig.center if m is not legend]
+    fig.add_layout(legend, "below")

@@ -11,7 +11,7 @@ from bokeh.models import FactorRange, Label, Range1d, Span
 
 from model.friction import mu, mu0
 
-from .common import BLACK, BLUE, GREEN, GREY, PURPLE, VERMILION, new_figure, source
+from .common import BLACK, BLUE, GREEN, GREY, PURPLE, VERMILION, legend_below, new_figure, source
 
 ENERGY_TERMS = ("D_x", "D_y", "U_el", "K")
 ENERGY_COLORS = (BLUE, VERMILION, GREEN, PURPLE)
@@ -31,6 +31,23 @@ def force_data(series) -> dict:
                        "F_abs": series.F_abs}}
 
 
+def force_x_range(series) -> tuple[float, float]:
+    """Fig. 7's tau axis: the contact, with a margin."""
+    tau_out = 10.0 if series is None or len(series.tau) == 0 else float(series.tau[-1])
+    return -0.02 * tau_out, 1.02 * tau_out
+
+
+def force_y_range(series, m0: float) -> tuple[float, float]:
+    """Fig. 7's force axis: every curve and mu0, with a margin."""
+    if series is None or len(series.tau) == 0:
+        lo, hi = 0.0, max(1.0, m0)
+    else:
+        lo = min(0.0, float(np.nanmin(series.F_x)), float(np.nanmin(series.F_y)))
+        hi = max(float(np.nanmax(series.F_abs)), m0)
+    pad = 0.06 * (hi - lo or 1.0)
+    return lo - pad, hi + pad
+
+
 def force_now(series, i: int) -> dict:
     if series is None or len(series.tau) == 0:
         return {"forces_now": {"tau": [], "F": []}}
@@ -43,7 +60,9 @@ def forces_figure(series, params=None, frame: int = 0, width: int = 340, height:
     """Fig. 7: friction on the support over f_N during the contact, mu0 marked."""
     m0 = mu0(params)
     fig = new_figure("forces", "Friction during contact (Fig. 7)", width, height,
-                     x_axis_label="τ", y_axis_label="F_f / f_N")
+                     x_axis_label="τ", y_axis_label="F_f / f_N",
+                     x_range=Range1d(*force_x_range(series)),
+                     y_range=Range1d(*force_y_range(series, m0)))
     src = source("forces", force_data(series)["forces"])
     fig.line("tau", "F_abs", source=src, line_color=BLACK, line_width=2, legend_label="|F_f|/f_N")
     fig.line("tau", "F_x", source=src, line_color=BLUE, line_width=2, legend_label="F_f,x/f_N")
@@ -59,13 +78,10 @@ def forces_figure(series, params=None, frame: int = 0, width: int = 340, height:
     fig.add_layout(Label(x=48, y=m0, x_units="screen", text=f"μ₀ = {m0:.4f}",
                          name="forces_mu0_label", text_color=GREEN, text_font_size="11px",
                          y_offset=2))
-    fig.legend.location = "bottom_right"
-    fig.legend.label_text_font_size = "10px"
-    fig.legend.background_fill_alpha = 0.7
-    fig.legend.click_policy = "hide"
-    fig.legend.padding = 2
-    fig.legend.spacing = 0
+    legend_below(fig)
     return fig
+
+
 
 
 def friction_law_data(params=None, v_max: float = V_MAX) -> dict:
@@ -85,10 +101,14 @@ def friction_now(series, i: int, params=None) -> dict:
 def friction_law_figure(series=None, params=None, frame: int = 0, width: int = 340,
                         height: int = 230):
     """Fig. 3: mu(|v_R|) (|v_R| in V0 = 10 V_s), mu0 = mu(1) and the current |v_R|."""
+    law_data = friction_law_data(params)["friction_law"]
+    # Fixed ranges: the marker moves every frame, and a data range would be recomputed
+    # (and, in a served page, sent to the server) each time.
+    top = 1.08 * float(np.nanmax(law_data["mu"]))
     fig = new_figure("friction_law", "Friction law μ(v) (Fig. 3)", width, height,
                      x_axis_label="|v_R| / V₀  (= v / 10 V_s)", y_axis_label="μ",
-                     x_range=Range1d(0, V_MAX))
-    law = source("friction_law", friction_law_data(params)["friction_law"])
+                     x_range=Range1d(0, V_MAX), y_range=Range1d(-0.04 * top, top))
+    law = source("friction_law", law_data)
     fig.line("v", "mu", source=law, line_color=BLACK, line_width=2)
     m0 = mu0(params)
     fig.scatter([1.0], [m0], size=8, marker="square", color=GREEN, legend_label="μ₀ = μ(1)")

@@ -12,9 +12,15 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from bokeh.models import Range1d
+from bokeh.models import DataRange1d
 
-from .common import BLACK, BLUE, GREY, VERMILION, new_figure, source
+from .common import BLACK, BLUE, GREY, ORANGE, VERMILION, legend_above, new_figure, source
+
+#: An odd quantity's curve is drawn in two colours by sign, with these legend labels: its
+#: radius is measured from the bold zero ring, so negative values lie inside it.
+SIGN_LABELS = {"pos": ("outside the bold ring: {name} > 0 (towards +y)", BLUE),
+               "neg": ("inside: {name} < 0 (towards −y)", ORANGE)}
+SIGN_NAMES = {"FTy": "F_T,y"}
 
 #: key -> (column of the orientation sweep, title, parity in theta0)
 QUANTITIES = {
@@ -88,15 +94,24 @@ def grid_data(key: str, axis) -> dict:
     }
 
 
-def polar_data(key: str, theta0, values) -> tuple[dict, tuple]:
-    """Sources of one polar diagram from a half sweep, and its radial axis."""
+def polar_data(key: str, theta0, values, cover=()) -> tuple[dict, tuple]:
+    """Sources of one polar diagram from a half sweep, and its radial axis (which also
+    covers the values ``cover``: a compared state's curve)."""
     parity = QUANTITIES[key][2]
     theta, vals = full_circle(theta0, values, parity)
-    axis = radial_axis(vals, parity)
+    axis = radial_axis(np.concatenate((vals, np.asarray(cover, float))), parity)
     r = np.clip(vals - axis[0], 0.0, None)
     curve = {"x": r * np.cos(theta), "y": r * np.sin(theta),
              "theta0_deg": np.degrees(theta) % 360, "value": vals}
-    return {f"polar_{key}": curve, **grid_data(key, axis)}, axis
+    signs = {}
+    if parity == "odd":
+        for sign, keep in (("pos", vals >= 0), ("neg", vals <= 0)):
+            # Keep the neighbours of a kept point, so each part reaches the zero ring.
+            near = keep | np.roll(keep, 1) | np.roll(keep, -1)
+            signs[f"polar_{key}_{sign}"] = {
+                "x": np.where(near, curve["x"], np.nan), "y": np.where(near, curve["y"], np.nan),
+                "theta0_deg": curve["theta0_deg"], "value": vals}
+    return {f"polar_{key}": curve, **signs, **grid_data(key, axis)}, axis
 
 
 def polar_now(key: str, theta0: float, value: float, axis) -> dict:
@@ -123,11 +138,15 @@ def polar_figure(key: str, theta0=(), values=(), current=None, width: int = 310,
         data.update(polar_now(key, *current, axis))
     else:
         data.update(polar_now(key, math.pi / 2, None, axis))
+    data.update(extent_data(key, axis))
     src = {name: source(name, cols) for name, cols in data.items()}
-    E = extent(axis)
+    # The ranges cover the invisible corners of ``extent_data`` and keep equal scales on
+    # x and y in a figure of any shape (match_aspect), so the diagram stays round.
     fig = new_figure(f"polar_{key}", QUANTITIES[key][1], width, height,
-                     x_range=Range1d(-E, E), y_range=Range1d(-E, E),
+                     x_range=DataRange1d(range_padding=0), y_range=DataRange1d(range_padding=0),
+                     match_aspect=True,
                      tooltips=[("θ₀", "@theta0_deg{0.0}°"), ("value", "@value{0.0000}")])
+    fig.scatter("x", "y", source=src[f"polar_{key}_extent"], size=0, alpha=0)
     fig.axis.visible = False
     fig.grid.visible = False
     fig.multi_line("xs", "ys", source=src[f"polar_{key}_rings"], line_color=GREY,
@@ -141,10 +160,20 @@ def polar_figure(key: str, theta0=(), values=(), current=None, width: int = 310,
                       text_baseline="middle")
     fig.line("x", "y", source=src[f"polar_{key}_spoke"], line_color=VERMILION, line_width=1.5,
              line_dash="dashed")
-    curve = fig.line("x", "y", source=src[f"polar_{key}"], line_color=BLUE, line_width=2.5)
+    odd = QUANTITIES[key][2] == "odd"
+    curve = fig.line("x", "y", source=src[f"polar_{key}"], line_color=BLUE, line_width=2.5,
+                     visible=not odd)
+    if odd:
+        for sign, (label, color) in SIGN_LABELS.items():
+            fig.line("x", "y", source=src[f"polar_{key}_{sign}"], line_color=color,
+                     line_width=2.5, legend_label=label.format(name=SIGN_NAMES.get(key, key)))
+        legend_above(fig)
+        fig.legend.orientation = "vertical"
     fig.scatter("x", "y", source=src[f"polar_{key}_now"], size=11, fill_color=VERMILION,
                 line_color=BLACK)
-    fig.hover.renderers = [curve]
+    fig.hover.renderers = [r for r in fig.renderers
+                           if r.data_source.name.startswith(f"polar_{key}")
+                           and r.data_source.name.endswith(("_pos", "_neg"))] if odd else [curve]
     fig.frame_width = fig.frame_height = min(width, height) - 50  # equal scales on x and y
     return fig
 
@@ -154,8 +183,15 @@ def extent(axis) -> float:
     return 1.22 * (axis[1] - axis[0])
 
 
+def extent_data(key: str, axis) -> dict:
+    """Two invisible corners, (-E, -E) and (E, E), that the figure's ranges cover."""
+    E = extent(axis)
+    return {f"polar_{key}_extent": {"x": [-E, E], "y": [-E, E]}}
+
+
 def set_extent(fig, axis) -> None:
     """Fit the ranges of a polar figure to a new radial axis."""
-    E = extent(axis)
-    fig.x_range.update(start=-E, end=E)
-    fig.y_range.update(start=-E, end=E)
+    key = fig.name.removeprefix("polar_")
+    for renderer in fig.renderers:
+        if getattr(renderer.data_source, "name", None) == f"polar_{key}_extent":
+            renderer.data_source.data = extent_data(key, axis)[f"polar_{key}_extent"]

@@ -1,5 +1,6 @@
-"""``python -m app.reproduce --out DIR [--png | --no-png]``: ``python -m model reproduce``
-with the figures drawn as HTML and PNG (see ``app.reproduce``). Exit codes as there."""
+"""``python -m app.reproduce --out DIR [--png | --no-png | --format png|svg|pdf ...]``:
+``python -m model reproduce`` with the figures drawn as HTML and PNG, or the formats
+asked for (see ``app.reproduce``). Exit codes as there."""
 import sys
 from functools import partial
 
@@ -7,7 +8,8 @@ from model.cli import UsageError
 from model.cli._common import CommandParser
 from model.cli.reproduce import add_arguments, run
 
-from . import draw
+from . import FORMATS, draw
+from .render import browser_problem
 
 PROG = "python -m app.reproduce"
 
@@ -21,12 +23,20 @@ def main(argv=None) -> int:
                      help="require PNG pictures (fail without Chromium and Playwright)")
     png.add_argument("--no-png", dest="png", action="store_const", const=False,
                      help="skip the PNG pictures")
+    png.add_argument("--format", dest="formats", action="append", choices=FORMATS,
+                     help="make exactly these pictures (repeat for several, e.g. --format svg "
+                          "--format pdf): svg and pdf are vector graphics for papers; fails "
+                          "without Chromium and Playwright")
     try:
         args = parser.parse_args(argv)
     except SystemExit as stop:
         return stop.code if isinstance(stop.code, int) else 2
+    if args.formats and browser_problem():  # before minutes of computing
+        print(f"{PROG}: error: --format: {'/'.join(args.formats)} pictures cannot be made: "
+              f"{browser_problem()}", file=sys.stderr)
+        return 2
     try:
-        return run(args, draw=partial(draw, png=args.png))
+        return run(args, draw=partial(draw, png=args.png, formats=args.formats))
     except UsageError as error:
         print(f"{PROG}: error: {error}", file=sys.stderr)
         return 2

@@ -1,188 +1,191 @@
-"""Uniform-orientation arrays: the Regime map tab (Fig. 5a/5b, from the shipped map; a
-click sets k_r and k_theta) and the Load tab (Fig. 6: the paper's four regimes and the
-current springs, computed point by point in a worker process while the tab is visible).
+"""Uniform-orientation arrays: the Regime map tab (Fig. 5a/5b; a click sets k_r and
+k_theta) and the Load tab (Fig. 6: the paper's four regimes and the current springs).
+
+Renderers of ``SessionResults.regime_map`` and ``SessionResults.load`` (with
+``.uniform`` marking the current load on Fig. 6).
 """
 from __future__ import annotations
-
-import functools
 
 import panel as pn
 import param
 from bokeh.events import Tap
 from bokeh.palettes import Cividis256, Viridis256
 
-from model import REGIMES
-from model.shipped_map import load_regime_map
-
 from .. import figures as F
-from ..compute import LOAD_F_N, sweep_row, uniform_future
-from ..figures.arrays import MAP_QUANTITIES
-from ..jobs import LatestOnly
+from ..figures.arrays import AVERAGE_COLUMNS, MAP_QUANTITIES
+from ..figures.pinned import add_pinned, load_curve_A, show_pinned
+from ..results import SessionResults
 from ..state import ExplorerState
-from .readouts import ReadoutsView
+from ..worker import LOAD_F_N, UNIFORM_TOL
+from .layout import grid_css
 
-
-@functools.lru_cache(maxsize=1)
-def shipped_map():
-    """The precomputed 24 x 24 regime map (F_N = 1), read once per server process."""
-    return load_regime_map()
+#: One figure beside a column of text (narrower in projector mode): the figure takes what
+#: the window leaves.
+FIGURE_AND_TEXT = grid_css("minmax(0, 1fr) var(--mp-text-width, 330px)", "minmax(0, 1fr)",
+                           phone_height=420)
 
 
 class RegimeMapView(pn.viewable.Viewer):
     """Fig. 5a (F_T,x/(mu0 F_N)) or 5b (D_y/D_x) over (k_r, k_theta); click to choose."""
 
-    def __init__(self, state: ExplorerState, **params):
+    state = param.ClassSelector(class_=ExplorerState, constant=True)
+    results = param.ClassSelector(class_=SessionResults, constant=True)
+
+    def __init__(self, **params):
         super().__init__(**params)
-        self.state = state
-        self.map = shipped_map()
+        state = self.state
+        self.map = self.results.regime_map
         self.figure = F.regime_map_figure(self.map, state.map_quantity, state.average,
                                           current=(state.k_r, state.k_theta), width=600,
                                           height=500)
+        self.figure.sizing_mode = "stretch_both"
         self._sources = F.sources(self.figure)
         self._mapper = F.annotation(self.figure, "regime_map_colorbar").color_mapper
         self.figure.on_event(Tap, self._on_tap)
         self.toggle = pn.widgets.RadioButtonGroup.from_param(
             state.param.map_quantity, css_classes=["ctl-map_quantity"],
-            options={"5a: F_T,x/(μ₀F_N)": "5a", "5b: D_y/D_x": "5b"}, width=300,
-            description=None)
-        state.param.watch(self._on_stiffness, ["k_r", "k_theta"])
-        state.param.watch(self._on_quantity, ["map_quantity", "average"])
-        state.param.watch(lambda e: F.style(self.figure, e.new), "projector")
+            options={"5a: friction F_T,x/(μ₀F_N)": "5a", "5b: D_y/D_x": "5b"}, orientation="vertical",
+            sizing_mode="stretch_width", description=None)
         F.style(self.figure, state.projector)
-        meta = self.map.metadata
-        self.info = pn.pane.Markdown(
-            f"Uniform arrays on a {meta.get('grid', {}).get('n', 24)}² log grid at F_N = 1 "
-            f"(self-consistent β, quadrature tolerance {meta.get('tol', 1e-3):g}, largest "
-            f"error {meta.get('max_quadrature_error', float('nan')):.1e}); precomputed, so it "
-            "does not follow the F_N slider or the β option. **Click the map to choose k_r, "
-            "k_θ.** The four labelled points are the paper's regimes; the current springs are "
-            "marked ⊕.", width=330, styles={"font-size": "0.92em"}, css_classes=["map-info"])
+        self.info = pn.pane.Markdown("", sizing_mode="stretch_width",
+                                     styles={"font-size": "0.92em"}, css_classes=["map-info"])
+        self._describe()
 
     def _on_tap(self, event) -> None:
         if event.x is not None and event.y is not None and event.x > 0 and event.y > 0:
             self.state.set_stiffness(event.x, event.y)
 
-    def _on_stiffness(self, *_events) -> None:
+    @param.depends("state.k_r", "state.k_theta", watch=True)
+    def _on_stiffness(self) -> None:
         F.update(self._sources, F.map_now(self.state.k_r, self.state.k_theta))
 
-    def _on_quantity(self, *_events) -> None:
+    @param.depends("results.regime_map", "results.busy", "results.errors", watch=True)
+    def _describe(self) -> None:
+        """Which map is on show (load, beta, grid, how it was made), and what is coming."""
+        m, busy = self.results.regime_map, "regime_map" in self.results.busy
+        error = self.results.errors.get("regime_map", "")
+        if m is None:
+            head = error or "Computing the regime map for this load …"
+        else:
+            meta = m.metadata
+            n = meta.get("grid", {}).get("n", m.k_r.size)
+            made = ("precomputed" if meta.get("computed") != "on this server"
+                    else f"computed here in {meta.get('seconds', float('nan')):.1f} s")
+            head = (f"Uniform arrays on a {n}×{n} log grid at F_N = {meta.get('F_N', 1.0):g}, "
+                    f"β {meta.get('beta', 'self')}, quadrature tolerance "
+                    f"{meta.get('tol', 1e-3):g} (largest error "
+                    f"{meta.get('max_quadrature_error', float('nan')):.1e}); {made}.")
+            if busy:
+                head += " **Refining …**"
+            elif error:
+                head += f" {error}"
+        self.info.object = (
+            f"{head} The map follows the F_N slider and the β option: loads "
+            "0.1, 0.3, 1, 3 and 10 are shipped, others are computed here (a coarse map "
+            "first). **Click the map to choose k_r, k_θ.** Dashed lines: where the regime "
+            "text switches; the four labelled points are the paper's regimes; the current "
+            "springs are marked ⊕.")
+
+    @param.depends("state.map_quantity", "state.average", "results.regime_map", watch=True)
+    def _on_quantity(self) -> None:
         q = self.state.map_quantity
+        self.map = self.results.regime_map
         data = F.map_data(self.map, q, self.state.average)
         F.update(self._sources, data)
         lo, hi = F.value_range(data["regime_map"]["value"])
         self._mapper.update(low=lo, high=hi, palette=Viridis256 if q == "5a" else Cividis256)
         self.figure.title.text = MAP_QUANTITIES[q][1]
 
+    @param.depends("state.projector", watch=True)
+    def _restyle(self) -> None:
+        F.style(self.figure, self.state.projector)
+
     def __panel__(self):
-        return pn.Row(pn.pane.Bokeh(self.figure), pn.Column(self.toggle, self.info),
-                      css_classes=["map-view"])
+        return pn.Column(
+            pn.pane.Bokeh(self.figure, sizing_mode="stretch_both",
+                          css_classes=["figure", "figure-regime_map"]),
+            pn.Column(self.toggle, self.info, css_classes=["side-column"], margin=0),
+            css_classes=["map-view"], margin=0, sizing_mode="stretch_width",
+            stylesheets=[FIGURE_AND_TEXT])
 
 
 class LoadView(pn.viewable.Viewer):
-    """Fig. 6 for the current (k_r, k_theta) and the paper's four regimes, one uniform
-    array at a time (current springs first), while the tab is visible."""
+    """Fig. 6 for the current (k_r, k_theta) and the paper's four regimes."""
 
-    active = param.Boolean(False, doc="whether the tab is visible (compute only then)")
-    error = param.String("")
+    state = param.ClassSelector(class_=ExplorerState, constant=True)
+    results = param.ClassSelector(class_=SessionResults, constant=True)
 
-    def __init__(self, state: ExplorerState, readouts: ReadoutsView, **params):
+    def __init__(self, **params):
         super().__init__(**params)
-        self.state, self.readouts = state, readouts
         self.figure = F.load_figure(width=620, height=440)
+        self.figure.sizing_mode = "stretch_both"
+        self._pinned = add_pinned(self.figure, "load", "load_curve")
         self._sources = F.sources(self.figure)
-        self.curves: dict = {"current": {}, **{r: {} for r in REGIMES}}
-        self._springs = self._beta = None
-        self._pending = None
-        self._stale = True
-        self.status = pn.pane.Markdown("", width=300, styles={"font-size": "0.92em"},
+        self.status = pn.pane.Markdown("", sizing_mode="stretch_width",
+                                       styles={"font-size": "0.92em"},
                                        css_classes=["load-status"])
-        self.pane = pn.pane.Bokeh(self.figure)
-        self.runner = LatestOnly(self._apply, busy=self._busy)
-        state.param.watch(self._invalidate, ["k_r", "k_theta", "beta_mode", "beta"])
-        state.param.watch(self._redraw, "average")
-        state.param.watch(lambda e: F.style(self.figure, e.new), "projector")
-        F.style(self.figure, state.projector)
-        readouts.param.watch(self._mark, "uniform")
-        self.param.watch(self._on_active, "active")
+        self.pane = pn.pane.Bokeh(self.figure, sizing_mode="stretch_both",
+                                  css_classes=["figure", "figure-load"])
+        F.style(self.figure, self.state.projector)
+        self._redraw()
+
+    @property
+    def curves(self) -> dict:
+        return self.results.load or {}
 
     @property
     def points(self) -> dict:
         """The current springs' curve: {F_N: uniform-array row}."""
-        return self.curves["current"]
+        return self.curves.get("current", {})
 
-    def _invalidate(self, *_events) -> None:
-        self._stale = True
-        self.runner.cancel()
-        if self.active:
-            self._start()
-
-    def _on_active(self, event) -> None:
-        if event.new and self._stale:
-            self._start()
-
-    def _start(self) -> None:
-        s = self.state
-        self._stale = False
-        if self._beta != s.array_beta:
-            self.curves = {name: {} for name in self.curves}
-        self.curves["current"] = {}
-        self._springs, self._beta = (s.k_r, s.k_theta), s.array_beta
-        self._redraw()
-        self._next()
-
-    def _todo(self):
-        for name, curve in self.curves.items():
-            k = self._springs if name == "current" else (REGIMES[name].k_r, REGIMES[name].k_theta)
-            for F_N in LOAD_F_N:
-                if F_N not in curve:
-                    return name, k, F_N
-        return None
-
-    def _next(self) -> None:
-        todo = self._todo()
-        done = sum(len(c) for c in self.curves.values())
-        total = len(LOAD_F_N) * len(self.curves)
-        if todo is None:
-            self._pending = None
-            self.status.object = (f"{done} uniform arrays (quadrature tolerance 1e-3), "
-                                  f"β {self._beta}.")
-            return
-        self._pending = todo
-        name, (k_r, k_theta), F_N = todo
-        beta = self._beta
-        self.status.object = f"Computing {name}, F_N = {F_N:.3g} ({done + 1}/{total}) …"
-        self.runner.submit(lambda: uniform_future(k_r, k_theta, F_N, beta))
-
-    def _busy(self, flag: bool) -> None:
-        self.pane.loading = flag and not self.points
-
-    def _apply(self, sweep, error) -> None:
-        if self._pending is None:
-            return
-        name, _, F_N = self._pending
-        if error is not None:
-            self.error = f"Fig. 6 point failed: {type(error).__name__}: {error}"
-            self.status.object = self.error
-            return
-        self.curves[name][F_N] = sweep_row(sweep)
-        self._redraw()
-        self._next()
-
-    def _redraw(self, *_events) -> None:
+    @param.depends("results.load", "state.average", watch=True)
+    def _redraw(self) -> None:
         avg = self.state.average
         regimes = {name: c for name, c in self.curves.items() if name != "current"}
         F.update(self._sources, {**F.load_curve_data(self.points, avg),
                                  **F.load_regimes_data(regimes, avg)})
         self._mark()
+        self._on_busy()
+        self._draw_pinned()
 
-    def _mark(self, *_events) -> None:
-        row = self.readouts.uniform
-        col = "FTx_over_mu0FN" if self.state.average == "paper" else "FTx_over_mu0FN_duration"
+    @param.depends("results.load_A", watch=True)
+    def _draw_pinned(self) -> None:
+        """A pinned state's curve, muted (``app.compare``)."""
+        points = self.results.load_A
+        F.update(self._sources, load_curve_A(points, AVERAGE_COLUMNS[self.state.average]))
+        show_pinned(self.figure, self._pinned, bool(points))
+
+    @param.depends("results.uniform", "state.F_N", watch=True)
+    def _mark(self) -> None:
+        row = self.results.uniform
+        col = AVERAGE_COLUMNS[self.state.average]
         F.update(self._sources, F.load_now(self.state.F_N, row[col] if row else None))
 
+    @param.depends("results.busy", "results.errors", watch=True)
+    def _on_busy(self) -> None:
+        busy = {"load", "load_regimes"} & set(self.results.busy)
+        error = self.results.errors.get("load") or self.results.errors.get("load_regimes")
+        self.pane.loading = bool(busy) and not self.points
+        done = sum(len(c) for c in self.curves.values())
+        if error:
+            self.status.object = error
+        elif busy:
+            self.status.object = "Computing the load curves (uniform arrays) …"
+        elif done:
+            self.status.object = (f"{done} uniform arrays (quadrature tolerance "
+                                  f"{UNIFORM_TOL:g}), β {self.state.array_beta}.")
+
+    @param.depends("state.projector", watch=True)
+    def _restyle(self) -> None:
+        F.style(self.figure, self.state.projector)
+
     def __panel__(self):
-        return pn.Row(self.pane, pn.Column(self.status, pn.pane.Markdown(
-            "Uniform arrays (θ₀ uniform on [0°, 360°)) against the normal load (Fig. 6). "
-            "Thin lines: the paper's four regimes; black: the current k_r, k_θ; red: the "
-            "current F_N (the readout of the Support tab).", width=300,
-            styles={"font-size": "0.92em"})), css_classes=["load-view"])
+        return pn.Column(self.pane, pn.Column(self.status, pn.pane.Markdown(
+            "Uniform arrays (θ₀ uniform on [0°, 360°)) against the normal load (Fig. 6), "
+            f"at F_N = {', '.join(f'{f:.2g}' for f in LOAD_F_N)}. "
+            "Coloured lines: the paper's four regimes; black: the current k_r, k_θ; the "
+            "marker: the current F_N (the readout of the One support tab).",
+            sizing_mode="stretch_width", styles={"font-size": "0.92em"}),
+            css_classes=["side-column"], margin=0),
+            css_classes=["load-view"], margin=0, sizing_mode="stretch_width",
+            stylesheets=[FIGURE_AND_TEXT])

@@ -19,12 +19,14 @@ class EquationsView(pn.viewable.Viewer):
                            margin=(2, 0))
                  for caption, latex in EQUATIONS]
         half = len(items) // 2
-        self.layout = pn.Row(
+        # Two columns side by side where there is room, one under the other on a phone.
+        column = dict(min_width=300, max_width=520, sizing_mode="stretch_width")
+        self.layout = pn.FlexBox(
             pn.Column(pn.pane.Markdown(EQUATIONS_INTRO, styles=style, margin=(0, 10)),
-                      *items[:half], width=480),
+                      *items[:half], **column),
             pn.Column(*items[half:], pn.pane.Markdown(EQUATIONS_NOTES, styles=style,
-                                                      margin=(0, 10)), width=480),
-            css_classes=["equations"])
+                                                      margin=(0, 10)), **column),
+            flex_wrap="wrap", css_classes=["equations"], sizing_mode="stretch_width")
 
     def __panel__(self):
         return self.layout

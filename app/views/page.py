@@ -1,10 +1,14 @@
-"""The whole page: a header with the tab bar "Support" | "Polar (Fig. 11)" | "Regime map
-(Fig. 5)" | "Load (Fig. 6)" | "Equations" (buttons, so it works from the keyboard), the
-controls on the left, notices above the visible tab.
+"""The whole page: a header with the tab bar "One support" | "Orientation (polar)" |
+"Regime map" | "Load" | "Equations" (buttons, so it works from the keyboard; the paper's
+figure numbers in their tooltip and the figures' titles), the controls on the left,
+notices and the headline (the result in one sentence) above the visible tab.
 
-Sized for a 1280 x 720 screen without scrolling. The URL follows the state (debounced,
-so dragging a slider does not flood the browser history); projector mode enlarges text
-and lines everywhere.
+The figures fill the window (``layout``): a 1280 x 720 laptop shows a whole tab without
+scrolling, a 1920 x 1080 projector the same tab larger; projector mode enlarges text,
+lines, slider handles and buttons. On a phone the controls fold above the plots, one
+plot per row. The URL follows the state (debounced, so dragging a slider does not flood
+the browser history) and Back/Forward restore the state of the entry
+(``browser.PageBehaviour``).
 """
 from __future__ import annotations
 
@@ -13,60 +17,96 @@ import io
 import panel as pn
 import param
 
-from ..compute import polar_cached, polar_future
 from ..export import sweep_csv, trajectory_csv
+from ..results import SessionResults
 from ..state import URL_KEYS, ExplorerState
 from ..texts import HELP
 from ..urlstate import TABS
+from .array import ArrayView
 from .arrays import LoadView, RegimeMapView
+from .browser import PageBehaviour
+from .code import CodeView
 from .controls import Controls
+from .design import DesignView
 from .equations import EquationsView
+from .layout import (BODY_CSS, BUTTON_CSS, HEADER_CSS, ROOT_CSS, ROOT_PROJECTOR, ROOT_SCREEN,
+                     SHRINK_CSS, SIDE_ROW_CSS, SIDEBAR_CSS)
 from .polar import PolarView
-from .readouts import ReadoutsView
+from .readouts import HeadlineView, ReadoutsView
 from .support import SupportView
 from .widgets import caption, look
 
-TAB_TITLES = ("Support", "Polar (Fig. 11)", "Regime map (Fig. 5)", "Load (Fig. 6)", "Equations")
+#: The tab bar: what each tab shows, and the paper's figures it draws (tooltip).
+TAB_TITLES = ("One support", "Array", "Orientation (polar)", "Regime map", "Load", "Equations",
+              "Design")
+TAB_FIGURES = ("Figs. 3, 7, Eq. 12", "Figs. 2a, 4", "Fig. 11", "Fig. 5", "Fig. 6", "Eqs. 3-13",
+               "Eq. 5 in physical units, Figs. 5a, 11a")
 URL_DELAY_MS = 400
-PROJECTOR_STYLES = {"--bokeh-font-size": "16px", "font-size": "16px", "color": "#000000"}
-SCREEN_STYLES = {"--bokeh-font-size": "13px", "font-size": "13px", "color": "#18191D"}
+PROJECTOR_STYLES, SCREEN_STYLES = ROOT_PROJECTOR, ROOT_SCREEN
+#: Width of the controls (px) on a screen and in projector mode, and folded away.
+SIDEBAR_WIDTH = {False: 290, True: 340}
+FOLDED_WIDTH = 150
+
+
+#: The results each tab shows (``SessionResults.show``): only those are computed.
+TAB_RESULTS = {"support": ("support", "uniform"), "array": ("support", "array"),
+               "polar": ("support", "polar"),
+               "map": ("support", "regime_map"), "load": ("support", "uniform", "load", "load_regimes"),
+               "equations": ("support",),
+               "design": ("support", "design_point", "design_array", "design_polar")}
 
 
 class Dashboard(pn.viewable.Viewer):
-    """Every view of one session, wired to one ``ExplorerState``."""
+    """The page of one session: controls -> ``SessionResults`` -> views.
+
+    The page owns the state (``ExplorerState``) and the results (``SessionResults``); every
+    view renders from them and none reads another view.
+    """
 
     messages = param.List(default=[], doc="notices and errors shown at the top of the page")
 
     def __init__(self, state: ExplorerState | None = None, **params):
         super().__init__(**params)
         self.state = state = state or ExplorerState()
+        self.results = results = SessionResults(state)
         self._url_generation = 0
-        self.support = SupportView(state)
-        self.readouts = ReadoutsView(state, self.support)
+        views = dict(state=state, results=results)
+        self.support = SupportView(**views)
+        self.readouts = ReadoutsView(**views)
+        self.headline = HeadlineView(**views)
+        self.behaviour = PageBehaviour(search=state.to_search(), margin=0, width=0, height=0)
+        self.behaviour.param.watch(self._on_history, "pops")
+        self.behaviour.param.watch(self._on_narrow, "narrow")
         # The other tabs are built when first shown: a quicker first page.
-        self.polar = self.regime_map = self.load = self.equations = None
+        self.array = self.polar = self.regime_map = self.load = self.equations = None
+        self.design = None
         self._builders = {
-            "polar": ("polar", lambda: PolarView(state, self.support)),
-            "map": ("regime_map", lambda: RegimeMapView(state)),
-            "load": ("load", lambda: LoadView(state, self.readouts)),
-            "equations": ("equations", EquationsView)}
+            "array": ("array", lambda: ArrayView(**views)),
+            "polar": ("polar", lambda: PolarView(**views)),
+            "map": ("regime_map", lambda: RegimeMapView(**views)),
+            "load": ("load", lambda: LoadView(**views)),
+            "equations": ("equations", EquationsView),
+            "design": ("design", lambda: DesignView(**views))}
         self._holders = {tab: pn.Column(sizing_mode="stretch_width", margin=0)
                          for tab in self._builders}
         self.downloads = [
             pn.widgets.FileDownload(callback=self._trajectory_csv, filename="trajectory.csv",
                                     label="Trajectory CSV", css_classes=["download-trajectory"],
                                     **look("light"), sizing_mode="stretch_width",
-                                    margin=(2, 3)),
+                                    margin=(2, 3), stylesheets=[BUTTON_CSS]),
             pn.widgets.FileDownload(callback=self._polar_csv, filename="polar_sweep.csv",
                                     label="Polar sweep CSV", css_classes=["download-polar"],
                                     **look("light"), sizing_mode="stretch_width",
-                                    margin=(2, 3))]
+                                    margin=(2, 3), stylesheets=[BUTTON_CSS])]
         self.help = pn.pane.Markdown(HELP, styles={"font-size": "0.85em", "color": "#555"},
                                      margin=(0, 10), visible=not state.projector)
+        self.code = CodeView(**views)
         self.controls = Controls(state, extra=[
             pn.pane.Markdown("**Download** (CSV)", margin=(4, 10, 0, 10)),
             pn.Row(*self.downloads, sizing_mode="stretch_width"),
-            self.help])
+            pn.pane.Markdown("**Animation of the support** (for slides)",
+                             margin=(4, 10, 0, 10)),
+            self.support.export, self.code, self.help])
         self.alert = pn.pane.Alert("", alert_type="warning", visible=False,
                                    css_classes=["page-notice"], margin=(2, 10),
                                    sizing_mode="stretch_width",
@@ -76,25 +116,29 @@ class Dashboard(pn.viewable.Viewer):
                                          css_classes=["notice-dismiss"], margin=(4, 4))
         self.dismiss.on_click(self._dismiss)
         self.tabs = pn.Tabs(
-            (TAB_TITLES[0], pn.Row(self.support, self.readouts)),
+            (TAB_TITLES[0], pn.Row(self.support, self.readouts, css_classes=["support-tab"],
+                                   sizing_mode="stretch_width", margin=0,
+                                   stylesheets=[SIDE_ROW_CSS])),
             *((title, self._holders[tab]) for title, tab in zip(TAB_TITLES[1:], TABS[1:])),
             active=TABS.index(state.tab), dynamic=False, css_classes=["main-tabs"],
             sizing_mode="stretch_width", margin=0,
-            stylesheets=[".bk-header {display: none;}"])
+            stylesheets=[".bk-header {display: none;}", SHRINK_CSS])
         # The tab bar: buttons, so the views are reachable with the keyboard (Tab, Space).
         self.tab_bar = pn.widgets.RadioButtonGroup.from_param(
-            state.param.tab, options=dict(zip(TAB_TITLES, TABS)), description=None,
+            state.param.tab, options=dict(zip(TAB_TITLES, TABS)),
+            description="; ".join(f"{t}: {f}" for t, f in zip(TAB_TITLES, TAB_FIGURES))
+            + " of the paper (Sci. Rep. 11, 8093, 2021)",
             **look("primary", "outline"), css_classes=["tab-bar"],
-            margin=(8, 10, 0, 10))
+            margin=(6, 10, 0, 10), stylesheets=[BUTTON_CSS])
         state.param.watch(self._on_state_tab, "tab")
-        for view in (self.support, self.readouts):
-            view.param.watch(self._collect, "error")
+        results.param.watch(self._collect, "errors")
         state.param.watch(self._collect, "notice")
         state.param.watch(self._on_projector, "projector")
         state.param.watch(self._schedule_url, list(URL_KEYS))
         state.param.watch(self._name_downloads, ["k_r", "k_theta", "F_N", "theta0"])
         self._name_downloads()
         self._set_active(state.tab)
+        results.start()
         self._collect()
         self._on_projector()
 
@@ -116,10 +160,7 @@ class Dashboard(pn.viewable.Viewer):
 
     def _set_active(self, tab: str) -> None:
         self._build(tab)
-        self.readouts.active = tab in ("support", "load")
-        for view, name in ((self.polar, "polar"), (self.load, "load")):
-            if view is not None:
-                view.active = tab == name
+        self.results.show(TAB_RESULTS[tab])
 
     def _build(self, tab: str) -> None:
         """Build the view of ``tab`` the first time it is shown."""
@@ -128,19 +169,17 @@ class Dashboard(pn.viewable.Viewer):
         attribute, build = self._builders[tab]
         view = build()
         setattr(self, attribute, view)
-        if "error" in view.param:
-            view.param.watch(self._collect, "error")
         self._holders[tab].objects = [view]
 
     @property
     def views(self) -> list:
         """The views built so far."""
-        return [v for v in (self.support, self.readouts, self.polar, self.regime_map,
-                            self.load, self.equations) if v is not None]
+        return [v for v in (self.support, self.readouts, self.array, self.polar, self.regime_map,
+                            self.load, self.equations, self.design) if v is not None]
 
     # ------------------------------------------------------------------ notices
     def _collect(self, *_events) -> None:
-        errors = [v.error for v in self.views if "error" in v.param and v.error]
+        errors = self.results.error_messages
         self.messages = [m for m in [self.state.notice, *errors] if m]
         error = bool(errors)
         self.alert.alert_type = "danger" if error else "warning"
@@ -149,47 +188,66 @@ class Dashboard(pn.viewable.Viewer):
 
     def _dismiss(self, _event) -> None:
         self.state.notice = ""
-        for view in self.views:
-            if "error" in view.param:
-                view.error = ""
+        self.results.clear_errors()
 
     # ------------------------------------------------------------------ URL, projector
     def _schedule_url(self, *_events) -> None:
-        doc, location = pn.state.curdoc, pn.state.location
-        if doc is None or location is None or doc.session_context is None:
+        doc = pn.state.curdoc
+        if doc is None or doc.session_context is None:
+            self.behaviour.search = self.state.to_search()
             return
         self._url_generation += 1
         generation = self._url_generation
 
         def write():
             if generation == self._url_generation:
-                location.search = self.state.to_search()
+                self.behaviour.search = self.state.to_search()
         doc.add_timeout_callback(write, URL_DELAY_MS)
+
+    def _on_history(self, _event) -> None:
+        """Back/Forward showed another address: show its state, and write that state
+        canonically in place of the entry (never as a new one)."""
+        popped = self.behaviour.popped
+        self.behaviour.acked = self.behaviour.pops  # what follows answers this step
+        self.behaviour.search = popped  # the address bar already shows it: nothing to push
+        self.state.restore_query(popped)
+        self._url_generation += 1  # the state's own (debounced) write is not needed
+        canonical = self.state.to_search()
+        self.behaviour.replace_search = canonical
+        self.behaviour.search = canonical
+
+    def _on_narrow(self, event) -> None:
+        """A phone: the controls start folded above the plots."""
+        if hasattr(self, "sidebar"):
+            self.sidebar.collapsed = bool(event.new)
 
     def _on_projector(self, *_events) -> None:
         self._root_styles = PROJECTOR_STYLES if self.state.projector else SCREEN_STYLES
         self.help.visible = not self.state.projector
         if hasattr(self, "_root"):
             self._root.styles = self._root_styles
+            if not self.state.projector:  # the controls fold only in projector mode
+                self.sidebar.collapsed = False
+            self._size_sidebar()
+
+    def _size_sidebar(self, *_events) -> None:
+        folded = self.sidebar.collapsed
+        self.sidebar.width = FOLDED_WIDTH if folded else SIDEBAR_WIDTH[self.state.projector]
 
     # ------------------------------------------------------------------ downloads
     def _trajectory_csv(self):
-        return io.StringIO(trajectory_csv(self.support.data))
+        return io.StringIO(trajectory_csv(self.results.support))
 
     def _polar_csv(self):
-        """The polar sweep of the current springs and load; started here if the Polar tab
-        has not computed it, and waited for briefly."""
-        s = self.state
-        sweep = polar_cached(s.params, s.array_beta, s.rtol)
-        if sweep is None:
-            try:
-                sweep = polar_future(s.params, s.array_beta, s.rtol).result(timeout=3)
-            except TimeoutError:
-                return io.StringIO("# the polar sweep is still being computed: "
-                                   "download again in a moment\n")
-            except Exception as exc:
-                return io.StringIO(f"# the polar sweep failed: {exc}\n")
-        return io.StringIO(sweep_csv(sweep))
+        """The polar sweep of the current springs and load, from what is computed: never
+        waits. If it is not computed yet, the sweep starts and the file says so."""
+        slot = self.results.slots["polar"]
+        if not slot.current:
+            slot.request()
+            if not slot.current:
+                return io.StringIO("# The polar sweep for these settings is being computed "
+                                   "(the Polar tab shows it): download again in a moment.\n")
+        return io.StringIO(sweep_csv(self.results.polar))
 
     def _name_downloads(self, *_events) -> None:
         s = self.state
@@ -200,14 +258,24 @@ class Dashboard(pn.viewable.Viewer):
     def __panel__(self):
         header = pn.Row(
             pn.pane.Markdown("### Micropillar friction explorer", margin=(0, 10), width=270,
-                             disable_anchors=True, styles={"white-space": "nowrap"}),
-            self.tab_bar, sizing_mode="stretch_width", height=46,
-            css_classes=["page-header"])
-        sidebar = pn.Column(self.controls, width=290, css_classes=["sidebar"], margin=0,
-                            scroll=True, styles={"max-height": "calc(100vh - 50px)"})
-        main = pn.Column(pn.Row(self.alert, self.dismiss, sizing_mode="stretch_width"),
-                         self.tabs, sizing_mode="stretch_width", margin=0)
-        self._root = pn.Column(header, pn.Row(sidebar, main, sizing_mode="stretch_width"),
-                               sizing_mode="stretch_width", styles=self._root_styles,
-                               css_classes=["dashboard"])
+                             disable_anchors=True, styles={"white-space": "nowrap"},
+                             css_classes=["page-title"]),
+            self.tab_bar, sizing_mode="stretch_width", min_height=46,
+            css_classes=["page-header"], stylesheets=[HEADER_CSS])
+        self.sidebar = pn.Card(
+            self.controls, title="Controls", collapsed=False, collapsible=True,
+            width=SIDEBAR_WIDTH[self.state.projector], css_classes=["sidebar"], margin=(0, 4),
+            scroll=True, styles={"max-height": "calc(100vh - 50px)"},
+            stylesheets=[SIDEBAR_CSS])
+        self.sidebar.param.watch(self._size_sidebar, "collapsed")
+        main = pn.Column(pn.Row(self.alert, self.dismiss, sizing_mode="stretch_width",
+                                stylesheets=[SHRINK_CSS]),
+                         self.headline, self.tabs, sizing_mode="stretch_width", margin=0,
+                         css_classes=["main-area"], stylesheets=[SHRINK_CSS])
+        self._root = pn.Column(header, pn.Row(self.sidebar, main, sizing_mode="stretch_width",
+                                              css_classes=["page-body"],
+                                              stylesheets=[BODY_CSS]),
+                               self.behaviour, sizing_mode="stretch_width",
+                               styles=self._root_styles, css_classes=["dashboard"],
+                               stylesheets=[ROOT_CSS])
         return self._root

@@ -1,8 +1,8 @@
 """The Polar tab (Fig. 11a-c): fixed-orientation arrays against theta0 for the current
 springs and load, as polar diagrams; a click on a diagram sets theta0.
 
-The sweep (``POLAR_N`` orientations, self-consistent or fixed beta) runs in a worker
-process, only while the tab is visible; a newer request supersedes an older one.
+A renderer of ``SessionResults.polar`` (the sweep, computed only while this tab is
+visible) and ``SessionResults.support`` (the current theta0's values, marked).
 """
 from __future__ import annotations
 
@@ -15,10 +15,11 @@ import param
 from bokeh.events import Tap
 
 from .. import figures as F
-from ..compute import POLAR_N, polar_cached, polar_future
-from ..jobs import LatestOnly
-from ..state import SWEEP_KEYS, ExplorerState
-from .support import SupportView
+from ..figures.pinned import add_pinned, polar_A, show_pinned
+from ..results import SessionResults
+from ..state import ExplorerState
+from ..worker import POLAR_N
+from .layout import grid_css
 
 KEYS = ("FTx", "DyDx", "FTy")
 
@@ -26,73 +27,55 @@ KEYS = ("FTx", "DyDx", "FTy")
 class PolarView(pn.viewable.Viewer):
     """Three polar diagrams of the fixed arrays (Fig. 11a-c), the current theta0 marked."""
 
-    active = param.Boolean(False, doc="whether the tab is visible (compute only then)")
-    sweep = param.Parameter(None, doc="the latest orientation sweep (a SweepResult)")
-    error = param.String("")
+    state = param.ClassSelector(class_=ExplorerState, constant=True)
+    results = param.ClassSelector(class_=SessionResults, constant=True)
 
-    def __init__(self, state: ExplorerState, support: SupportView, **params):
+    def __init__(self, **params):
         super().__init__(**params)
-        self.state, self.support = state, support
         self._doc = pn.state.curdoc
-        self._stale = True
         self._axes = {}
         self.figures = {k: F.polar_figure(k, width=325, height=340) for k in KEYS}
+        for fig in self.figures.values():  # fill the window; match_aspect keeps them round
+            fig.update(frame_width=None, frame_height=None, sizing_mode="stretch_both")
         self._sources = {}
         for key, fig in self.figures.items():
             self._sources.update(F.sources(fig))
             fig.on_event(Tap, self._on_tap)
             self._axes[key] = F.polar_data(key, [], [])[1]
+        # A pinned state's curves (``app.compare``), under B's; hidden until one is pinned.
+        self._pinned = {fig: add_pinned(fig, "polar", f"polar_{key}" + (
+            "_pos" if F.POLAR_QUANTITIES[key][2] == "odd" else ""), key)
+                        for key, fig in self.figures.items()}
+        for fig in self.figures.values():
+            self._sources.update(F.sources(fig))
+            F.style(fig, self.state.projector)
         self.status = pn.pane.Markdown("", css_classes=["polar-status"],
                                        styles={"font-size": "0.92em"}, margin=(0, 10))
-        self.row = pn.Row(*(pn.pane.Bokeh(f, margin=(0, 4)) for f in self.figures.values()),
-                          css_classes=["polar-view"])
-        self.runner = LatestOnly(self._apply, busy=self._busy)
-        state.param.watch(self._invalidate, list(SWEEP_KEYS))
-        state.param.watch(self._restyle, "projector")
-        for fig in self.figures.values():
-            F.style(fig, state.projector)
-        support.param.watch(self._mark, "data")
-        self.param.watch(self._on_active, "active")
-        cached = polar_cached(state.params, state.array_beta, state.rtol)
-        if cached is not None:
-            self._apply(cached, None)
+        self.caption = self._caption()
+        self.panes = [pn.pane.Bokeh(f, margin=(0, 4), sizing_mode="stretch_both",
+                                    css_classes=["figure", f"figure-{f.name}"])
+                      for f in self.figures.values()]
+        self._draw()
+        self._on_busy()
 
-    # ------------------------------------------------------------------ compute
-    def _invalidate(self, *_events) -> None:
-        self._stale = True
-        if self.active:
-            self._request()
-        else:
-            self.runner.cancel()
-
-    def _on_active(self, event) -> None:
-        if event.new and self._stale:
-            self._request()
-
-    def _request(self) -> None:
-        s = self.state
-        self._stale = False
-        self.status.object = (f"Computing {POLAR_N} fixed-orientation arrays "
-                              f"(θ₀ in (0°, 180°), mirrored) …")
-        self.runner.submit(lambda: polar_future(s.params, s.array_beta, s.rtol))
-
-    def _busy(self, flag: bool) -> None:
-        self.row.loading = flag
-
-    def _apply(self, sweep, error) -> None:
-        if error is not None:
-            self.error = f"Orientation sweep failed: {type(error).__name__}: {error}"
-            self.status.object = self.error
+    # ------------------------------------------------------------------ results
+    @param.depends("results.polar", "results.polar_A", watch=True)
+    def _draw(self) -> None:
+        sweep, pinned = self.results.polar, self.results.polar_A
+        if sweep is None:
             return
-        self.error = ""
         cols = sweep.columns
+        a = pinned.columns if pinned is not None else None
         with self._hold():
-            self.sweep = sweep
             for key in KEYS:
-                column = F.POLAR_QUANTITIES[key][0]
-                data, self._axes[key] = F.polar_data(key, cols["theta0"], cols[column])
-                F.update(self._sources, data)
+                column, _, parity = F.POLAR_QUANTITIES[key]
+                data, self._axes[key] = F.polar_data(key, cols["theta0"], cols[column],
+                                                     a[column] if a is not None else ())
+                F.update(self._sources, {**data, **polar_A(
+                    key, a["theta0"] if a is not None else None,
+                    a[column] if a is not None else None, parity, self._axes[key])})
                 F.set_extent(self.figures[key], self._axes[key])
+                show_pinned(self.figures[key], self._pinned[self.figures[key]], a is not None)
             self._mark()
         bad = int(np.sum(~np.asarray(cols["success"], bool)))
         pivot = int(np.sum(np.asarray(cols["pivot_approach"], bool)))
@@ -105,16 +88,30 @@ class PolarView(pn.viewable.Viewer):
             + (f"{pivot} driven into their pivot region. " if pivot else "")
             + "Click a diagram to set θ₀.")
 
+    @param.depends("results.busy", "results.errors", watch=True)
+    def _on_busy(self) -> None:
+        busy = "polar" in self.results.busy
+        for pane in self.panes:
+            pane.loading = busy
+        error = self.results.errors.get("polar", "")
+        if error:
+            self.status.object = error
+        elif busy:
+            self.status.object = (f"Computing {POLAR_N} fixed-orientation arrays "
+                                  f"(θ₀ in (0°, 180°), mirrored) …")
+
     def _hold(self):
         return pn.io.hold(self._doc) if self._doc is not None else contextlib.nullcontext()
 
     # ------------------------------------------------------------------ current theta0
-    def _mark(self, *_events) -> None:
-        data = self.support.data
-        theta0 = math.radians(self.state.theta0)
+    @param.depends("results.support", watch=True)
+    def _mark(self) -> None:
+        data = self.results.support
         values = {"FTx": None, "DyDx": None, "FTy": None}
+        theta0 = math.radians(self.state.theta0)
         if data is not None and data.fixed is not None:
             f = data.fixed
+            theta0 = data.params.theta0
             values = {"FTx": f.FTx_over_mu0FN, "DyDx": f.Dy_over_Dx, "FTy": f.FTy_over_mu0FN}
         for key in KEYS:
             F.update(self._sources, F.polar_now(key, theta0, values[key], self._axes[key]))
@@ -124,14 +121,29 @@ class PolarView(pn.viewable.Viewer):
             return
         self.state.set_theta0(math.degrees(math.atan2(event.y, event.x)))
 
-    def _restyle(self, event) -> None:
+    @param.depends("state.projector", watch=True)
+    def _restyle(self) -> None:
+        # Projected, the diagrams take the room (their legends say how to read F_T,y).
+        self.caption.visible = not self.state.projector
         for fig in self.figures.values():
-            F.style(fig, event.new)
+            F.style(fig, self.state.projector)
 
     def __panel__(self):
-        return pn.Column(self.row, self.status, pn.pane.Markdown(
+        notes = pn.Column(self.status, self.caption, css_classes=["polar-notes"],
+                          sizing_mode="stretch_width", margin=0)
+        return pn.Column(
+            *self.panes, notes, css_classes=["polar-view"], margin=0,
+            sizing_mode="stretch_width",
+            stylesheets=[grid_css("repeat(3, minmax(0, 1fr))", "minmax(0, 1fr) auto",
+                                  {"polar-notes": "1 / span 3"}, phone_height=400)])
+
+    def _caption(self):
+        return pn.pane.Markdown(
             "Fixed-orientation arrays: every support shares θ₀ (Fig. 9). The radius is the "
             "quantity, the angle is θ₀ (0° = sliding direction +x). F_T,x and D_y/D_x are even "
-            "in θ₀, F_T,y is odd; F_T,y is drawn about the bold zero ring.",
-            styles={"font-size": "0.92em"}, margin=(0, 10), width=900))
-
+            "in θ₀, F_T,y is odd. **Reading the F_T,y diagram:** its radius counts from the "
+            "bold zero ring, so a point outside the ring (blue) pushes the slab sideways "
+            "towards +y and a point inside it (orange) towards −y; at θ₀ = 0° and 180° the "
+            "curve crosses the ring (no sideways force).",
+            styles={"font-size": "0.92em"}, margin=(0, 10), sizing_mode="stretch_width",
+            css_classes=["polar-caption"], visible=not self.state.projector)

@@ -1,6 +1,8 @@
-"""Readouts (the issue's list, item 6): the regime and its mechanism, the fixed array at
-theta0 (Figs. 9-11) and the uniform array (Figs. 5, 6, 8), computed in a worker process
-with a loading indicator; a newer request supersedes an older one.
+"""Readouts: the headline above the plots (the friction change in one plain sentence),
+the regime and its mechanism, and behind a disclosure the numbers of the fixed array at
+theta0 (Figs. 9-11) and of the uniform array (Figs. 5, 6, 8) with their diagnostics; with
+a pinned state "A", its headline numbers beside the current ones and their differences.
+Renderers of ``SessionResults.support``, ``.uniform`` and ``.support_A``, ``.uniform_A``.
 """
 from __future__ import annotations
 
@@ -9,15 +11,13 @@ import math
 import panel as pn
 import param
 
-from ..compute import sweep_row, uniform_future
-from ..jobs import LatestOnly
-from ..state import ARRAY_KEYS, ExplorerState
+from model.quantities import readout
+
+from ..figures.arrays import AVERAGE_COLUMNS
+from ..results import SessionResults
+from ..state import ExplorerState
 from ..texts import MECHANISMS
-from .support import SupportView
 
-
-#: The uniform array is requested once the controls have rested this long.
-DEBOUNCE_MS = 200
 TABLE_CSS = ("table {border-collapse: collapse; width: 100%;} "
              "td, th {padding: 2px 6px; line-height: 1.25;}")
 
@@ -26,9 +26,42 @@ def _fmt(x, digits: int = 4) -> str:
     return "–" if x is None or not math.isfinite(x) else f"{x:.{digits}g}"
 
 
+def change_words(ratio: float | None) -> str:
+    """F_T,x/(mu0 F_N) in words: how far friction lies below (or above) a rigid surface,
+    on which every support would slide at the full speed and F_T,x = mu0 F_N."""
+    if ratio is None or not math.isfinite(ratio):
+        return "not available"
+    percent = 100.0 * (1.0 - ratio)
+    if abs(percent) < 0.05:
+        return "the same as on a rigid surface"
+    return f"{abs(percent):.1f} % {'below' if percent > 0 else 'above'} a rigid surface"
+
+
+def headline_text(fixed: float | None, theta0_deg: float, uniform: float | None,
+                  uniform_note: str = "") -> str:
+    """The page's one-line result, e.g. "Friction is 5.5 % below a rigid surface (every
+    support at θ₀ = 90°); averaged over all orientations: 5.5 % below a rigid surface."
+    ``fixed`` and ``uniform`` are F_T,x/(mu0 F_N) of the fixed and uniform arrays;
+    ``uniform_note`` stands in for a uniform value not (yet) there."""
+    first = (f"Friction is {change_words(fixed)} (every support at θ₀ = {theta0_deg:g}°)"
+             if fixed is not None else "Friction: being computed")
+    second = change_words(uniform) if uniform is not None else (uniform_note or "being computed")
+    return f"{first}; averaged over all orientations: {second}."
+
+
 def regime_markdown(regime: str) -> str:
     title, text = MECHANISMS[regime]
     return f"**{title}.** {text}"
+
+
+#: The fixed array's readout: quantities of the registry (``model.quantities``), whose
+#: labels and formats the rows take.
+FIXED_READOUT = ("FTx_over_mu0FN", "FTy_over_mu0FN", "Dy_over_Dx", "Nc_over_Nc0", "beta",
+                 "r_max")
+#: Words before the symbols, for students.
+PLAIN = {"FTx_over_mu0FN": "friction along x", "FTy_over_mu0FN": "sideways force",
+         "Dy_over_Dx": "dissipated across / along", "Nc_over_Nc0": "contacts",
+         "beta": "load factor", "r_max": "largest stretch"}
 
 
 def fixed_markdown(data) -> str:
@@ -37,11 +70,10 @@ def fixed_markdown(data) -> str:
         return "*No result for these parameters.*"
     f, r = data.fixed, data.result
     theta0_deg = round(math.degrees(data.params.theta0), 6)
-    rows = [("F_T,x/(μ₀F_N)", _fmt(f.FTx_over_mu0FN)),
-            ("F_T,y/(μ₀F_N)", _fmt(f.FTy_over_mu0FN)),
-            ("D_y/D_x", _fmt(f.Dy_over_Dx)), ("N_c/N_c0 = τ_out/L₀", _fmt(f.Nc_over_Nc0)),
-            ("β = N_c0/N_c", _fmt(f.beta)),
-            ("energy residual / W", _fmt(abs(r.energy_residual / r.W) if r and r.W else None, 2))]
+    rows = [(f"{PLAIN[name]}, {label}" if name in PLAIN else label, value)
+            for name, (label, value) in zip(FIXED_READOUT, readout(f, FIXED_READOUT))]
+    rows.append(("energy residual / W",
+                 _fmt(abs(r.energy_residual / r.W) if r and r.W else None, 2)))
     body = "\n".join(f"| {k} | {v} |" for k, v in rows)
     return f"| Fixed array, θ₀ = {theta0_deg:g}° | |\n|:--|--:|\n{body}"
 
@@ -55,9 +87,10 @@ def uniform_markdown(row: dict | None, average: str, note: str = "") -> str:
         paper = f"**{paper}**"
     else:
         duration = f"**{duration}**"
-    rows = [("F_T,x/(μ₀F_N), paper (Eq. 10)", paper),
-            ("F_T,x/(μ₀F_N), duration-weighted", duration),
-            ("D_y/D_x", _fmt(row["Dy_over_Dx"])), ("N_c/N_c0", _fmt(row["Nc_over_Nc0"])),
+    rows = [("friction F_T,x/(μ₀F_N), paper (Eq. 10)", paper),
+            ("friction F_T,x/(μ₀F_N), duration-weighted", duration),
+            ("dissipated across / along, D_y/D_x", _fmt(row["Dy_over_Dx"])),
+            ("contacts, N_c/N_c0", _fmt(row["Nc_over_Nc0"])),
             ("quadrature error", _fmt(row["quadrature_error_FTx"], 2))]
     body = "\n".join(f"| {k} | {v} |" for k, v in rows)
     warn = "" if row.get("success", True) else (
@@ -65,68 +98,143 @@ def uniform_markdown(row: dict | None, average: str, note: str = "") -> str:
     return f"| Uniform array (all θ₀) | |\n|:--|--:|\n{body}{warn}"
 
 
+#: The numbers compared between a pinned state A and the current B: (label, fixed-array
+#: quantity of the registry, or None for the uniform array's F_T,x of the chosen average).
+COMPARED = (("F_T,x/(μ₀F_N)", "FTx_over_mu0FN"), ("F_T,y/(μ₀F_N)", "FTy_over_mu0FN"),
+            ("D_y/D_x", "Dy_over_Dx"), ("N_c/N_c0", "Nc_over_Nc0"),
+            ("all θ₀: F_T,x/(μ₀F_N)", None))
+
+
+def _settings(p) -> str:
+    return (f"k_r = {p.k_r:.3g}, k_θ = {p.k_theta:.3g}, F_N = {p.F_N:.3g}, "
+            f"θ₀ = {round(math.degrees(p.theta0), 6):g}°")
+
+
+def compared_values(support, uniform: dict | None, average: str) -> list:
+    """The ``COMPARED`` numbers of one state (None where not computed)."""
+    fixed = support.fixed if support is not None else None
+    return [(uniform or {}).get(AVERAGE_COLUMNS[average]) if name is None
+            else getattr(fixed, name, None) if fixed is not None else None
+            for _, name in COMPARED]
+
+
+def difference(a: float | None, b: float | None) -> tuple[str, str]:
+    """B - A and its change relative to A, as text ("–" where either is missing)."""
+    if a is None or b is None or not (math.isfinite(a) and math.isfinite(b)):
+        return "–", "–"
+    return f"{b - a:+.3g}", f"{100 * (b - a) / abs(a):+.1f} %" if a != 0 else "–"
+
+
+def compare_markdown(a_support, b_support, a_uniform, b_uniform, average: str) -> str:
+    """A (pinned) and B (current) side by side: the fixed array at each one's theta0 and
+    the uniform array, with B - A and, under it, its change relative to A."""
+    rows = []
+    a_vals = compared_values(a_support, a_uniform, average)
+    b_vals = compared_values(b_support, b_uniform, average)
+    for (label, _), a, b in zip(COMPARED, a_vals, b_vals):
+        diff, rel = difference(a, b)
+        rows.append(f"| {label} | {_fmt(a)} | {_fmt(b)} | {diff}<br>{rel} |")
+    who = [f"**{side}**: {_settings(d.params)}" for side, d in
+           (("A (pinned)", a_support), ("B (current)", b_support)) if d is not None]
+    return ("| Compare | A | B | B − A |\n|:--|--:|--:|--:|\n" + "\n".join(rows)
+            + "\n\n" + "; ".join(who))
+
+
 class ReadoutsView(pn.viewable.Viewer):
     """Regime and mechanism, fixed-array and uniform-array numbers."""
 
-    active = param.Boolean(True, doc="whether the uniform array is on screen (compute only then)")
-    uniform = param.Dict(default=None, allow_None=True, doc="the latest uniform-array row")
-    error = param.String("")
+    state = param.ClassSelector(class_=ExplorerState, constant=True)
+    results = param.ClassSelector(class_=SessionResults, constant=True)
 
-    def __init__(self, state: ExplorerState, support: SupportView, **params):
+    def __init__(self, **params):
         super().__init__(**params)
-        self.state, self.support = state, support
         style = {"font-size": "0.92em"}
         compact = [TABLE_CSS]
-        self.regime_pane = pn.pane.Markdown(regime_markdown(state.regime), width=290,
-                                            css_classes=["readout-regime"], styles=style,
-                                            margin=(0, 5))
-        self.fixed_pane = pn.pane.Markdown(fixed_markdown(support.data),
-                                           width=290, css_classes=["readout-fixed"],
-                                           styles=style, stylesheets=compact, margin=(0, 5))
-        self.uniform_pane = pn.pane.Markdown(uniform_markdown(None, state.average), width=290,
-                                             css_classes=["readout-uniform"], styles=style,
-                                             stylesheets=compact, margin=(0, 5))
-        self.runner = LatestOnly(self._apply, busy=self._busy)
-        support.param.watch(self._on_support, "data")
-        state.param.watch(self._on_regime, ["k_r", "k_theta"])
-        state.param.watch(self._request, list(ARRAY_KEYS))
-        state.param.watch(self._show_uniform, "average")
-        self.param.watch(lambda e: e.new and self._stale and self._request(), "active")
-        self._stale = True
-        self._request()
+        wide = dict(sizing_mode="stretch_width", margin=(0, 5))
+        self.regime_pane = pn.pane.Markdown(regime_markdown(self.state.regime),
+                                            css_classes=["readout-regime"], styles=style, **wide)
+        self.fixed_pane = pn.pane.Markdown(fixed_markdown(self.results.support),
+                                           css_classes=["readout-fixed"], styles=style,
+                                           stylesheets=compact, **wide)
+        self.uniform_pane = pn.pane.Markdown(
+            uniform_markdown(self.results.uniform, self.state.average),
+            css_classes=["readout-uniform"], styles=style, stylesheets=compact, **wide)
+        self.compare_pane = pn.pane.Markdown("", css_classes=["readout-compare"],
+                                             styles=style, stylesheets=compact, visible=False,
+                                             **wide)
+        self.details = pn.Card(
+            self.fixed_pane, self.uniform_pane, title="Numbers and diagnostics",
+            collapsed=True, css_classes=["readout-details"], sizing_mode="stretch_width",
+            margin=(6, 5))
+        self._compare()
 
-    def _on_support(self, event) -> None:
-        self.fixed_pane.object = fixed_markdown(event.new)
+    @param.depends("results.support", watch=True)
+    def _on_support(self) -> None:
+        self.fixed_pane.object = fixed_markdown(self.results.support)
 
-    def _on_regime(self, *_events) -> None:
+    @param.depends("state.k_r", "state.k_theta", watch=True)
+    def _on_regime(self) -> None:
         self.regime_pane.object = regime_markdown(self.state.regime)
 
-    def _request(self, *_events) -> None:
-        self._stale = True
-        if not self.active:
-            self.runner.cancel()
-            return
-        self._stale = False
-        s = self.state
-        self.runner.submit_later(
-            lambda: uniform_future(s.k_r, s.k_theta, s.F_N, s.array_beta), DEBOUNCE_MS)
+    @param.depends("results.uniform", "results.errors", "state.average", watch=True)
+    def _show_uniform(self) -> None:
+        failed = bool(self.results.errors.get("uniform"))
+        self.uniform_pane.object = uniform_markdown(
+            None if failed else self.results.uniform, self.state.average,
+            "failed" if failed else "")
 
-    def _busy(self, flag: bool) -> None:
-        self.uniform_pane.loading = flag
+    @param.depends("results.support", "results.uniform", "results.support_A",
+                   "results.uniform_A", "state.pinned", "state.average", watch=True)
+    def _compare(self) -> None:
+        r = self.results
+        on = self.state.pinned is not None
+        self.compare_pane.visible = on
+        if on:
+            self.compare_pane.object = compare_markdown(r.support_A, r.support, r.uniform_A,
+                                                        r.uniform, self.state.average)
 
-    def _apply(self, sweep, error) -> None:
-        if error is not None:
-            self.error = f"Uniform array failed: {type(error).__name__}: {error}"
-            self.uniform = None
-            self.uniform_pane.object = uniform_markdown(None, self.state.average, "failed")
-            return
-        self.error = ""
-        self.uniform = sweep_row(sweep)
-        self._show_uniform()
-
-    def _show_uniform(self, *_events) -> None:
-        self.uniform_pane.object = uniform_markdown(self.uniform, self.state.average)
+    @param.depends("results.busy", watch=True)
+    def _busy(self) -> None:
+        self.uniform_pane.loading = "uniform" in self.results.busy
 
     def __panel__(self):
-        return pn.Column(self.regime_pane, self.fixed_pane, self.uniform_pane,
-                         css_classes=["readouts"], width=300)
+        return pn.Column(self.regime_pane, self.compare_pane, self.details, css_classes=["readouts", "side-column"],
+                         width=300, margin=0)
+
+
+class HeadlineView(pn.viewable.Viewer):
+    """The result in one plain sentence above the plots (``headline_text``)."""
+
+    state = param.ClassSelector(class_=ExplorerState, constant=True)
+    results = param.ClassSelector(class_=SessionResults, constant=True)
+
+    def __init__(self, **params):
+        super().__init__(**params)
+        self.pane = pn.pane.HTML("", css_classes=["headline"], sizing_mode="stretch_width",
+                                 margin=(2, 10), styles={"font-size": "1.15em",
+                                                         "font-weight": "600"})
+        self._write()
+        self._for_tab()
+
+    @param.depends("state.tab", watch=True)
+    def _for_tab(self) -> None:
+        # The sentence is about the sidebar's support: the Design tab has its own numbers.
+        self.pane.visible = self.state.tab != "design"
+
+    @param.depends("results.support", "results.uniform", "results.errors", "state.average",
+                   watch=True)
+    def _write(self) -> None:
+        data = self.results.support
+        fixed = theta0 = None
+        if data is not None and data.fixed is not None:
+            fixed = data.fixed.FTx_over_mu0FN
+            theta0 = round(math.degrees(data.params.theta0), 6)
+        row = self.results.uniform
+        failed = bool(self.results.errors.get("uniform"))
+        uniform = None if failed or row is None else row[AVERAGE_COLUMNS[self.state.average]]
+        text = headline_text(fixed, theta0 if theta0 is not None else self.state.theta0,
+                             uniform, "not computed (see the notice)" if failed else "")
+        self.pane.object = f"<span>{text}</span>"
+
+    def __panel__(self):
+        return self.pane

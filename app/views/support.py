@@ -1,154 +1,193 @@
 """The Support tab: one support of the fixed-orientation array at theta0 during one contact.
 
-The scene (pivot, rest position, path coloured by tau, springs, slab), the friction
-histories (Fig. 7), the friction law (Fig. 3) with the current |v_R| and the split of the
-slab work (Eq. 12). A player animates the contact. New results replace the data of the
-figures' sources in place (no new figures: zoom is kept, nothing flickers).
+The scene (a top view: pivot, rest position, path coloured by tau, springs, the sliding
+slab, arrows), the friction histories (Fig. 7), the friction law (Fig. 3) with the current
+|v_R| and the live split of the slab work (Eq. 12 at every tau). A renderer of
+``SessionResults.support``: a new result replaces the data of the figures' sources in
+place (no new figures: nothing flickers).
+
+The animation runs in the browser (``app.figures.player``): every frame's data is sent
+once per result, and a browser-side timer draws the frames -- no server round trip per
+frame, labelled play/pause, single steps, speed 0.1x-4x, loop and keyboard shortcuts.
 """
 from __future__ import annotations
 
 import collections
-import concurrent.futures as cf
 import contextlib
 import logging
 import time
 
+import numpy as np
 import panel as pn
 import param
 
+from model.friction import mu0
+
 from .. import figures as F
-from ..compute import SAMPLES, SupportData, support_future
-from ..jobs import LatestOnly
-from ..state import SUPPORT_KEYS, ExplorerState
-from .widgets import caption
+from ..figures.common import legend_above, source
+from ..figures.live_energy import (energy_frames, energy_live_data, energy_live_range,
+                                   live_energy_figure, support_frames_callback,
+                                   support_frames_data)
+from ..figures.pinned import add_pinned, forces_A, orbit_A, show_pinned
+from ..figures.player import browser_player
+from ..figures.scene import view_box
+from ..results import SessionResults
+from ..state import ExplorerState
+from .export import AnimationExport
+from .layout import grid_css
+
 
 log = logging.getLogger(__name__)
 
+#: Frames of the animation of one contact (the browser draws them at 30 per second at 1x).
+N_FRAMES = 300
+
+
+def _placeholder_energies(n: int) -> dict:
+    return {k: np.zeros(n) for k in ("tau", "W", "D_x", "D_y", "U_el", "K")}
+
 
 class SupportView(pn.viewable.Viewer):
-    """Scene, Fig. 7, Fig. 3 and the energy split for the current support; a player."""
+    """Scene, Fig. 7, Fig. 3 and the live energy split for the current support; a player."""
 
-    data = param.ClassSelector(class_=SupportData, doc="the latest single-support result")
-    error = param.String("", doc="what went wrong with the latest request, if anything")
-    busy = param.Boolean(False, doc="a computation is under way")
+    state = param.ClassSelector(class_=ExplorerState, constant=True)
+    results = param.ClassSelector(class_=SessionResults, constant=True)
 
-    def __init__(self, state: ExplorerState, **params):
+    def __init__(self, **params):
         super().__init__(**params)
-        self.state = state
         self._doc = pn.state.curdoc
         #: Server-side seconds from a control change to updated plot data (latest last).
         self.timings: collections.deque = collections.deque(maxlen=500)
-        self._requested = None
         self.spinner = pn.indicators.LoadingSpinner(value=True, size=24, visible=False,
                                                     css_classes=["support-busy"])
-        data, first = _first(state)
-        self.player = pn.widgets.Player(
-            **caption("Animation"), start=0, end=SAMPLES - 1, value=0, step=2, interval=50,
-            loop_policy="loop", show_loop_controls=False, show_value=False, width=330,
-            scale_buttons=0.8, css_classes=["player"], margin=(0, 5),
-            visible_buttons=["slower", "first", "previous", "reverse", "pause", "play",
-                             "next", "last", "faster"])
-        series, p, i = data.series, data.params, 0
-        self.scene = F.scene_figure(series, p, i, width=340, height=330)
-        self.forces = F.forces_figure(series, p, i, width=340, height=330)
-        self.friction = F.friction_law_figure(series, p, i, width=340, height=225)
-        self.energy = F.energy_figure(data.energy_fractions(), width=340, height=225)
+        p = self.state.params
+        self.player = browser_player(N_FRAMES, times=np.zeros(N_FRAMES), name="support_player",
+                                     width=680, responsive=True, autoplay=self.state.play)
+        self.scene = F.scene_figure(None, p, 0, width=340, height=330)
+        self.forces = F.forces_figure(None, p, 0, width=340, height=330)
+        self.friction = F.friction_law_figure(None, p, 0, width=340, height=225)
+        self.energy_frames = source("energy_live_frames", _placeholder_energies(N_FRAMES))
+        self.energy_layout = live_energy_figure(_placeholder_energies(N_FRAMES), self.player,
+                                                width=340, height=225,
+                                                frames=self.energy_frames)
+        self.energy = self.energy_layout.children[0]
         self.figures = [self.scene, self.forces, self.friction, self.energy]
         self._sources = {}
         for fig in self.figures:
             self._sources.update(F.sources(fig))
-        self._time_label = F.annotation(self.scene, "scene_time")
-        self._time_span = F.annotation(self.forces, "forces_time")
-        self.data, self.error = data, data.error
-        self.runner = LatestOnly(self._apply, busy=self._busy)
-        if data.result is None and not data.error:  # fill the plots when it arrives
-            self.runner.submit(lambda: first)
-        state.param.watch(self._request, list(SUPPORT_KEYS))
-        state.param.watch(self._restyle, "projector")
+        self._frames_js = None  # made with the first trajectory
+        self._pinned = {self.scene: add_pinned(self.scene, "scene", "orbit"),
+                        self.forces: add_pinned(self.forces, "forces", "forces")}
+        for fig in self._pinned:
+            self._sources.update(F.sources(fig))
+        legend_above(self.friction)
         for fig in self.figures:
-            F.style(fig, state.projector)
-        self.player.param.watch(self._on_frame, "value")
-        self._panes = [pn.pane.Bokeh(fig, margin=(0, 5)) for fig in self.figures]
-        self.hint = pn.pane.Markdown(
-            "▶ animates the contact: the slab (blue band) slides over the support; its "
-            "trailing edge reaches the mass at τ_out.", width=300, margin=(0, 5),
-            styles={"font-size": "0.85em"}, visible=not state.projector)
+            fig.sizing_mode = "stretch_both"
+            F.style(fig, self.state.projector)
+        self.energy_layout.sizing_mode = "stretch_both"
+        self.energy_layout.min_height = self.energy.min_height = 200
+        self.energy_layout.children[1].sizing_mode = "stretch_width"
+        self._panes = [pn.pane.Bokeh(fig, margin=(0, 5), sizing_mode="stretch_both",
+                                     css_classes=["figure", f"figure-{fig.name}"])
+                       for fig in (self.scene, self.forces, self.friction, self.energy_layout)]
+        self._player_pane = pn.pane.Bokeh(self.player.layout, margin=(0, 5),
+                                          css_classes=["player"], sizing_mode="stretch_width")
+        self.export = AnimationExport(state=self.state, results=self.results, what="support")
+        if self._doc is not None:
+            pn.state.onload(self.player.ready)  # keyboard shortcuts once the page is up
+        self._draw()
 
-    # ------------------------------------------------------------------ compute
-    def _request(self, *_events) -> None:
-        self._requested = time.perf_counter()
-        try:
-            params = self.state.params
-        except ValueError as exc:
-            self.error = f"Invalid parameters: {exc}"
+    # ------------------------------------------------------------------ results
+    @param.depends("results.support", watch=True)
+    def _draw(self) -> None:
+        data = self.results.support
+        if data is None or data.result is None or data.series is None:
             return
-        args = (params, self.state.array_beta, self.state.rtol)
-        self.runner.submit(lambda: support_future(*args))
-
-    def _apply(self, data: SupportData | None, error) -> None:
-        if error is not None or data is None:
-            self.error = f"The computation failed: {type(error).__name__}: {error}"
-            return
-
-        self.error = data.error
-        if data.result is None:  # the model raised: keep the last good plots
-            return
+        s, p = data.series, data.params
+        frames = support_frames_data(s, p, N_FRAMES)
         with self._hold():
-            self.data = data
-            s, p = data.series, data.params
-            F.update(self._sources, {**F.scene_data(s, p), **F.force_data(s),
-                                     **F.energy_data(data.energy_fractions())})
-            self._draw_frame(self.player.value)
-        if self._requested is not None:
-            self.timings.append(time.perf_counter() - self._requested)
+            F.update(self._sources, {**F.scene_data(s, p), **F.scene_frame(s, p, 0),
+                                     **F.force_data(s)})
+            self._fit_ranges(s, p)
+            if getattr(s, "W", None) is not None:
+                energies = energy_frames(s, N_FRAMES)
+                self.energy_frames.data = energy_live_data(energies)["energy_live_frames"]
+                self.energy.y_range.update(**dict(zip(("start", "end"),
+                                                      energy_live_range(energies))))
+            self.player.set_times(frames["support_frames"]["tau"])
+            if self._frames_js is None:
+                self._frames_js = support_frames_callback(
+                    s, p, N_FRAMES, scene=self.scene, forces=self.forces, law=self.friction,
+                    frame=self.player.frame)
+                self.player.on_frame(self._frames_js)
+                self._frames_js.args["fp"].js_on_change("data", self._frames_js)
+            else:
+                self._frames_js.args["data"].data = frames["support_frames"]
+                self._frames_js.args["fp"].data = frames["support_frame_params"]
+        requested = self.results.slots["support"].requested_at
+        if requested is not None:
+            self.timings.append(time.perf_counter() - requested)
             log.debug("support update: %.2f ms (model %.2f ms)", 1e3 * self.timings[-1],
                       1e3 * data.seconds)
 
-    def _busy(self, flag: bool) -> None:
+    def _fit_ranges(self, s, p) -> None:
+        """Fixed ranges around everything each figure will draw (B's support and a pinned
+        A's): the browser then need not recompute bounds while the markers move (the
+        costliest part of a frame)."""
+        shown = [(s, p)]
+        a = self.results.support_A
+        if a is not None and a.series is not None:
+            shown.append((a.series, a.params))
+        boxes = [view_box(*sp) for sp in shown]
+        self.scene.x_range.update(start=min(b[0] for b in boxes), end=max(b[1] for b in boxes))
+        self.scene.y_range.update(start=min(b[2] for b in boxes), end=max(b[3] for b in boxes))
+        xs = [F.force_x_range(series) for series, _ in shown]
+        ys = [F.force_y_range(series, mu0(params)) for series, params in shown]
+        self.forces.x_range.update(start=min(x[0] for x in xs), end=max(x[1] for x in xs))
+        self.forces.y_range.update(start=min(y[0] for y in ys), end=max(y[1] for y in ys))
+
+    @param.depends("results.support_A", watch=True)
+    def _draw_pinned(self) -> None:
+        """A pinned state's path and histories, muted under B's (``app.compare``)."""
+        a = self.results.support_A
+        on = a is not None and a.series is not None
+        with self._hold():
+            F.update(self._sources, {**orbit_A(a.series if on else None, a.params if on else None),
+                                     **forces_A(a.series if on else None)})
+            for fig, renderers in self._pinned.items():
+                show_pinned(fig, renderers, on)
+            b = self.results.support
+            if b is not None and b.series is not None:
+                self._fit_ranges(b.series, b.params)
+
+    @param.depends("results.busy", watch=True)
+    def _busy(self) -> None:
         """Show the spinner only for work that takes a noticeable time."""
-        self.busy = flag
-        if not flag:
+        busy = "support" in self.results.busy
+        if not busy:
             self.spinner.visible = False
         elif self._doc is not None:
             self._doc.add_timeout_callback(
-                lambda: setattr(self.spinner, "visible", self.busy), 300)
+                lambda: setattr(self.spinner, "visible", "support" in self.results.busy), 300)
 
     def _hold(self):
         return pn.io.hold(self._doc) if self._doc is not None else contextlib.nullcontext()
 
-    # ------------------------------------------------------------------ animation
-    def _on_frame(self, event) -> None:
-        with self._hold():
-            self._draw_frame(event.new)
-
-    def _draw_frame(self, i: int) -> None:
-        s, p = self.data.series, self.data.params
-        F.update(self._sources, {**F.scene_frame(s, p, i), **F.force_now(s, i),
-                                 **F.friction_now(s, i, p)})
-        now = self._sources["forces_now"].data["tau"]
-        self._time_span.location = float(now[0]) if len(now) else 0.0
-        self._time_label.text = F.time_text(s, i)
-
-    def _restyle(self, event) -> None:
-        self.hint.visible = not event.new
+    @param.depends("state.projector", watch=True)
+    def _restyle(self) -> None:
+        projector = self.state.projector
         with self._hold():
             for fig in self.figures:
-                F.style(fig, event.new)
+                F.style(fig, projector)
 
     def __panel__(self):
         scene, forces, friction, energy = self._panes
-        return pn.Column(pn.Row(scene, forces), pn.Row(self.player, self.spinner, self.hint),
-                         pn.Row(friction, energy), css_classes=["support-view"])
+        player = pn.Row(self._player_pane, self.spinner, css_classes=["player-row"],
+                        sizing_mode="stretch_width", margin=0)
+        return pn.Column(
+            scene, forces, player, friction, energy, css_classes=["support-view"],
+            margin=0, sizing_mode="stretch_width",
+            stylesheets=[grid_css("minmax(0, 1fr) minmax(0, 1fr)",
+                                  "minmax(0, 3fr) auto minmax(0, 2fr)",
+                                  {"player-row": "1 / span 2"})])
 
-
-def _first(state: ExplorerState, wait: float = 1.0):
-    """The first result of a session and its future: waited for briefly so the page opens
-    with data; a slow one (a hard case in the URL) starts with empty plots."""
-    future = support_future(state.params, state.array_beta, state.rtol)
-    try:
-        return future.result(timeout=wait), future
-    except cf.TimeoutError:
-        return SupportData(state.params, None, None, ""), future
-    except Exception as exc:  # a worker that could not start: say so, keep the page
-        return SupportData(state.params, None, None,
-                           f"The computation failed: {type(exc).__name__}: {exc}"), future

@@ -10,14 +10,17 @@ import numpy as np
 
 from ..friction import series_coefficients
 from .batch import DERIVED, integrate_batch
-from .driver import N_STATS, integrate
-from .rhs import FN, N_MOTION, N_PARAM, N_STATE, REG, TAU, TH0, X0, jacobian, mu_over_s, rhs
+from . import slots
+from .driver import MAX_NODES, N_NODE_COLS, N_REC, REC_SLOTS, integrate
+from .rhs import FN, N_PARAM, REG, TH0, X0, jacobian, mu_over_s, rhs
+from .slots import N_MOTION, N_STATE, N_STATS, STAT_NAMES, TAU, THETA, X, Y
 
-__all__ = ["pack", "initial_state", "integrate", "integrate_batch", "warmup", "rhs", "jacobian", "mu_over_s",
-           "N_STATE", "N_MOTION", "N_STATS", "METHOD_CODES", "TH0", "X0", "FN", "TAU", "REG", "DERIVED"]
+__all__ = ["pack", "initial_state", "integrate", "integrate_batch", "warmup", "cache_is_cold",
+           "announce_cold_start", "rhs", "jacobian", "mu_over_s",
+           "slots", "STAT_NAMES", "N_STATE", "N_MOTION", "N_STATS", "N_REC", "REC_SLOTS", "N_NODE_COLS", "MAX_NODES", "METHOD_CODES", "TH0", "X0", "FN", "TAU", "REG", "DERIVED"]
 
 METHOD_CODES = {"auto": 0, "explicit": 1, "implicit": 2}
-_MODULES = ("rhs", "dopri5", "rodas4", "driver", "batch")
+_MODULES = ("slots", "rhs", "dopri5", "rodas4", "driver", "batch")
 
 
 def _purge_stale_cache() -> None:
@@ -48,6 +51,32 @@ def _purge_stale_cache() -> None:
 
 
 _purge_stale_cache()
+
+
+#: Seconds a cold compile of the kernel takes on a 2-core machine (for the message).
+COLD_COMPILE_SECONDS = 10
+
+
+def cache_is_cold() -> bool:
+    """True when numba's on-disk cache holds no compiled kernel (first start, or the
+    kernel sources changed), so the first integration will compile for several seconds."""
+    try:
+        cache_dir = Path(integrate_batch._cache._cache_path)
+    except AttributeError:  # numba internals changed: assume the worst
+        return True
+    if integrate_batch.signatures:  # compiled or loaded in this process already
+        return False
+    return not any(cache_dir.glob("batch.integrate_batch-*.nbi"))
+
+
+def announce_cold_start(stream) -> bool:
+    """Write "preparing the solver (first start, ~N s)" to ``stream`` when the kernel
+    must be compiled first (instead of a silent pause); True if it did."""
+    if not cache_is_cold():
+        return False
+    stream.write(f"preparing the solver (first start, ~{COLD_COMPILE_SECONDS} s)\n")
+    stream.flush()
+    return True
 
 
 def warmup() -> float:
@@ -86,6 +115,6 @@ def pack(params, x0=None) -> np.ndarray:
 def initial_state(params) -> np.ndarray:
     """At rest at (cos theta0, sin theta0) with theta = theta0; quadratures zero."""
     y0 = np.zeros(N_STATE)
-    y0[0], y0[1] = params.rest_position
-    y0[4] = params.theta0
+    y0[X], y0[Y] = params.rest_position
+    y0[THETA] = params.theta0
     return y0

@@ -9,7 +9,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .rhs import N_STATE, copy_into, rhs
+from .rhs import copy_into, rhs
+from .slots import ERROR_SLOTS, N_ERROR, N_MOTION, N_STATE
 
 ORDER = 5
 A = np.array([
@@ -33,33 +34,51 @@ P_DENSE = np.array([
 ])
 
 
+# The coefficients as scalars, so that the compiled step holds them as constants.
+A21 = A[1, 0]
+A31, A32 = A[2, 0], A[2, 1]
+A41, A42, A43 = A[3, 0], A[3, 1], A[3, 2]
+A51, A52, A53, A54 = A[4, 0], A[4, 1], A[4, 2], A[4, 3]
+A61, A62, A63, A64, A65 = A[5, 0], A[5, 1], A[5, 2], A[5, 3], A[5, 4]
+B1, B3, B4, B5, B6 = B[0], B[2], B[3], B[4], B[5]
+E1, E3, E4, E5, E6, E7 = E[0], E[2], E[3], E[4], E[5], E[6]
+
+
 @njit(cache=True, error_model="numpy")
 def step(y, f, h, P, K, ynew, err, ystage):
     """One step of size h from (y, f = f(y)).
 
-    Fills K (7 stages, K[6] = f(ynew) for FSAL), ynew, the error estimate err and
-    ystage, the argument of stage 6 (used by the stiffness detector).
+    Fills K (7 stages, K[6] = f(ynew) for FSAL), ynew, the error estimate err on
+    ``ERROR_SLOTS`` and ystage, the argument of stage 6 (used by the stiffness
+    detector). The right-hand side reads only the motion, so the stage arguments are
+    formed for the motion slots alone; the quadratures and tau enter ynew only.
     """
-    n = N_STATE
+    m = N_MOTION
     copy_into(K[0], f)
-    for s in range(1, 6):
-        for i in range(n):
-            acc = 0.0
-            for j in range(s):
-                acc += A[s, j] * K[j, i]
-            ystage[i] = y[i] + h * acc
-        rhs(ystage, P, K[s])
-    for i in range(n):
-        acc = 0.0
-        for j in range(6):
-            acc += B[j] * K[j, i]
-        ynew[i] = y[i] + h * acc
-    rhs(ynew, P, K[6])
-    for i in range(n):
-        acc = 0.0
-        for j in range(7):
-            acc += E[j] * K[j, i]
-        err[i] = h * acc
+    k1, k2, k3, k4, k5, k6, k7 = K[0], K[1], K[2], K[3], K[4], K[5], K[6]
+    for i in range(m):
+        ystage[i] = y[i] + h * A21 * k1[i]
+    rhs(ystage, P, k2)
+    for i in range(m):
+        ystage[i] = y[i] + h * (A31 * k1[i] + A32 * k2[i])
+    rhs(ystage, P, k3)
+    for i in range(m):
+        ystage[i] = y[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i])
+    rhs(ystage, P, k4)
+    for i in range(m):
+        ystage[i] = y[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i])
+    rhs(ystage, P, k5)
+    for i in range(m):
+        ystage[i] = y[i] + h * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i]
+                                + A65 * k5[i])
+    rhs(ystage, P, k6)
+    for i in range(N_STATE):
+        ynew[i] = y[i] + h * (B1 * k1[i] + B3 * k3[i] + B4 * k4[i] + B5 * k5[i] + B6 * k6[i])
+    rhs(ynew, P, k7)
+    for k in range(N_ERROR):
+        i = ERROR_SLOTS[k]
+        err[i] = h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i]
+                      + E7 * k7[i])
 
 
 @njit(cache=True, error_model="numpy", inline="always")

@@ -16,7 +16,11 @@ import numpy as np
 from numba import njit
 
 from . import dopri5, rodas4
-from .rhs import N_MOTION, N_STATE, TAU, copy_into, exit_gap, jacobian, rhs
+from .rhs import copy_into, exit_gap, jacobian, rhs
+from .slots import (ERROR_SLOTS, N_ERROR, N_MOTION, N_STATE, N_STATS, NONFINITE, OK, ST_ACC,
+                    ST_ACC_EXPL, ST_ACC_IMPL, ST_JAC, ST_LU, ST_REJ, ST_RHS, ST_SWITCH,
+                    STEP_BUDGET, STEP_UNDERFLOW, TAU, THETA, TIME_BUDGET, VX, VY, W, D_X, D_Y,
+                    X, Y)
 
 SAFETY = 0.9
 STIFF_HLAMBDA = 3.25  # DP5 stability boundary on the negative real axis (~3.3)
@@ -27,44 +31,49 @@ NONSTIFF_COUNT = 5
 # repulsion, the torsional barrier): ``auto`` uses the explicit pair there.
 PIVOT_EXPLICIT = 1e-3
 SCAN_POINTS = 8
-# stats slots
-ST_ACC, ST_REJ, ST_RHS, ST_JAC, ST_LU, ST_SWITCH, ST_ACC_EXPL, ST_ACC_IMPL = range(8)
-N_STATS = 8
+# PI step-size control (Gustafsson; Hairer & Wanner I, IV.2): the explicit pair uses
+# err^-(1/5 - 0.75 BETA) * err_old^BETA, which damps the accept/reject oscillation.
+PI_BETA = 0.04
 
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _err_norm(err, y, ynew, rtol, atol):
-    acc = 0.0
+    """RMS of the scaled error over ``ERROR_SLOTS`` (the motion and tau); inf if non-finite."""
     for i in range(N_STATE):
-        sc = atol + rtol * max(abs(y[i]), abs(ynew[i]))
         if not math.isfinite(ynew[i]):
             return np.inf
+    acc = 0.0
+    for k in range(N_ERROR):
+        i = ERROR_SLOTS[k]
+        sc = atol + rtol * max(abs(y[i]), abs(ynew[i]))
         e = err[i] / sc
         acc += e * e
-    v = math.sqrt(acc / N_STATE)
+    v = math.sqrt(acc / N_ERROR)
     return v if math.isfinite(v) else np.inf
 
 
 @njit(cache=True, error_model="numpy")
 def _initial_step(y, f, P, rtol, atol, order, work, fwork):
-    """Hairer & Wanner's starting step (Solving ODEs I, II.4)."""
+    """Hairer & Wanner's starting step (Solving ODEs I, II.4), on ``ERROR_SLOTS``."""
     d0 = 0.0
     d1 = 0.0
-    for i in range(N_STATE):
+    for k in range(N_ERROR):
+        i = ERROR_SLOTS[k]
         sc = atol + rtol * abs(y[i])
         d0 += (y[i] / sc) ** 2
         d1 += (f[i] / sc) ** 2
-    d0 = math.sqrt(d0 / N_STATE)
-    d1 = math.sqrt(d1 / N_STATE)
+    d0 = math.sqrt(d0 / N_ERROR)
+    d1 = math.sqrt(d1 / N_ERROR)
     h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
     for i in range(N_STATE):
         work[i] = y[i] + h0 * f[i]
     rhs(work, P, fwork)
     d2 = 0.0
-    for i in range(N_STATE):
+    for k in range(N_ERROR):
+        i = ERROR_SLOTS[k]
         sc = atol + rtol * abs(y[i])
         d2 += ((fwork[i] - f[i]) / sc) ** 2
-    d2 = math.sqrt(d2 / N_STATE) / h0
+    d2 = math.sqrt(d2 / N_ERROR) / h0
     dm = max(d1, d2)
     h1 = max(1e-6, h0 * 1e-3) if dm <= 1e-15 else math.exp(math.log(0.01 / dm) / (order + 1))
     return min(100 * h0, h1)
@@ -83,10 +92,10 @@ def _hermite(y0, f0, y1, f1, h, th, i):
 @njit(cache=True, error_model="numpy", inline="always")
 def _gap_at(th, h, y, f, ynew, fnew, K, implicit, P):
     if implicit:
-        x = _hermite(y, f, ynew, fnew, h, th, 0)
+        x = _hermite(y, f, ynew, fnew, h, th, X)
         tau = _hermite(y, f, ynew, fnew, h, th, TAU)
     else:
-        x = dopri5.dense_component(y, K, h, th, 0)
+        x = dopri5.dense_component(y, K, h, th, X)
         tau = dopri5.dense_component(y, K, h, th, TAU)
     return exit_gap(tau, x, P)
 
@@ -98,12 +107,12 @@ def _locate_exit(h, y, f, ynew, fnew, K, implicit, P):
     Scans the step when s(tau) ends above L0 or may have a maximum inside
     (v_x crosses 1), then refines the first bracket by the Illinois method.
     """
-    g1 = exit_gap(ynew[TAU], ynew[0], P)
-    may_peak = (y[2] < 1.0) and (ynew[2] > 1.0)
+    g1 = exit_gap(ynew[TAU], ynew[X], P)
+    may_peak = (y[VX] < 1.0) and (ynew[VX] > 1.0)
     if g1 < 0.0 and not may_peak:
         return -1.0
     lo = 0.0
-    glo = exit_gap(y[TAU], y[0], P)
+    glo = exit_gap(y[TAU], y[X], P)
     hi = -1.0
     ghi = 0.0
     for k in range(1, SCAN_POINTS + 1):
@@ -151,28 +160,59 @@ def _jac_norm(J):
     return big
 
 
+#: State slots recorded at every accepted step (with ``record``): the motion and the
+#: cumulative quadratures of the energy split (Eq. 12), W, D_x, D_y.
+REC_SLOTS = (X, Y, VX, VY, THETA, W, D_X, D_Y)
+N_REC = len(REC_SLOTS)
+N_NODE_COLS = 1 + 2 * N_REC
+
+
+#: Most nodes kept (``record``): a contact of any length stores at most MAX_NODES rows
+#: (4.5 MB). Past it every other node is dropped and only every other step recorded from
+#: then on (the stride doubles), so the nodes stay evenly spread over the whole contact;
+#: contacts of fewer accepted steps keep every step, as before.
+MAX_NODES = 1 << 15
+
+
 @njit(cache=True, error_model="numpy")
-def _record(nodes, count, y, f):
-    """Append (tau, x, y, v_x, v_y, theta, and their tau-derivatives) to ``nodes``."""
+def _record(nodes, count, stride, step, force, y, f):
+    """Append (tau, the REC_SLOTS of y, and their tau-derivatives) to ``nodes`` when
+    accepted step number ``step`` falls on ``stride`` (or ``force``: the last state).
+
+    Returns (nodes, count, stride); node i holds step i * stride."""
+    if step % stride != 0 and not force:
+        return nodes, count, stride
     if count == nodes.shape[0]:
-        bigger = np.empty((2 * nodes.shape[0], nodes.shape[1]))
-        for i in range(count):
-            copy_into(bigger[i], nodes[i])
-        nodes = bigger
+        if count >= MAX_NODES:
+            half = (count + 1) // 2
+            for i in range(1, half):
+                copy_into(nodes[i], nodes[2 * i])
+            count = half
+            stride *= 2
+            if step % stride != 0 and not force:
+                return nodes, count, stride
+        else:
+            bigger = np.empty((min(2 * nodes.shape[0], MAX_NODES), nodes.shape[1]))
+            for i in range(count):
+                copy_into(bigger[i], nodes[i])
+            nodes = bigger
     nodes[count, 0] = y[TAU]
-    for i in range(5):
-        nodes[count, 1 + i] = y[i]
-        nodes[count, 6 + i] = f[i] / f[TAU]  # d/dtau = (d/ds) / w
-    return nodes, count + 1
+    for k in range(N_REC):
+        i = REC_SLOTS[k]
+        nodes[count, 1 + k] = y[i]
+        nodes[count, 1 + N_REC + k] = f[i] / f[TAU]  # d/dtau = (d/ds) / w
+    return nodes, count + 1, stride
 
 
 @njit(cache=True, error_model="numpy")
 def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
     """Integrate from y0 until the exit event, a budget, or a failure.
 
-    Returns (status, t, y, stats, r_min, nodes, n_nodes); status codes are those of
-    ``model.results.STATUS``. ``nodes`` rows are (t, x, y, v_x, v_y, theta, and
-    their five derivatives) at every accepted step when ``record`` is set.
+    Returns (status, t, y, stats, r_min, r_max, nodes, n_nodes); status codes are those
+    named in ``slots`` (``model.results.Status``); r_min and r_max are the extremes of the distance r from
+    the pivot over the accepted steps. ``nodes`` rows are (tau, the ``REC_SLOTS`` of the
+    state, and their tau-derivatives) at the accepted steps when ``record`` is set: every
+    step, or every 2^k-th once there are more than ``MAX_NODES``, and the last one.
     """
     n = N_STATE
     stats = np.zeros(N_STATS, np.int64)
@@ -192,26 +232,29 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
     implicit = method == 2
     h = _initial_step(y, f, P, rtol, atol, 4 if implicit else 5, ystage, fnew)
     stats[ST_RHS] += 2
-    nodes = np.empty((256 if record else 1, 11))
+    nodes = np.empty((256 if record else 1, N_NODE_COLS))
     n_nodes = 0
+    stride = 1
     if record:
-        nodes, n_nodes = _record(nodes, n_nodes, y, f)
+        nodes, n_nodes, stride = _record(nodes, n_nodes, stride, 0, False, y, f)
     t = 0.0
-    r_min = math.sqrt(y[0] * y[0] + y[1] * y[1])
+    r_min = math.sqrt(y[X] * y[X] + y[Y] * y[Y])
+    r_max = r_min
     stiff = 0
     nonstiff = 0
     easy = 0
     last_rejected = False
+    en_old = 1e-4
     nonfinite = False
     finishing = False
     fell_back = False
     status = -1
     while status < 0:
         if stats[ST_ACC] + stats[ST_REJ] >= max_steps:
-            status = 1
+            status = STEP_BUDGET
             break
         if y[TAU] >= tau_max:
-            status = 2
+            status = TIME_BUDGET
             break
         hmin = 16.0 * 2.220446049250313e-16 * max(1.0, abs(t))
         if h < hmin:
@@ -222,7 +265,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
                 stats[ST_SWITCH] += 1
                 h = 1e6 * hmin
                 continue
-            status = 4 if nonfinite else 3
+            status = NONFINITE if nonfinite else STEP_UNDERFLOW
             break
         if implicit:
             jacobian(y, P, f, J)
@@ -252,7 +295,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
         else:
             copy_into(fnew, K[6])
         if finishing:
-            status = 0
+            status = OK
         else:
             th = _locate_exit(h, y, f, ynew, fnew, K, implicit, P)
             if th > 0.0:
@@ -263,7 +306,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
         stats[ST_ACC] += 1
         stats[ST_ACC_IMPL if implicit else ST_ACC_EXPL] += 1
         switched = False
-        r_new = math.sqrt(ynew[0] * ynew[0] + ynew[1] * ynew[1])
+        r_new = math.sqrt(ynew[X] * ynew[X] + ynew[Y] * ynew[Y])
         if method == 0 and status < 0 and r_new < PIVOT_EXPLICIT:
             if implicit:
                 implicit = False
@@ -293,12 +336,23 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
         t += h
         copy_into(y, ynew)
         copy_into(f, fnew)
-        r_min = min(r_min, math.sqrt(y[0] * y[0] + y[1] * y[1]))
+        r_now = math.sqrt(y[X] * y[X] + y[Y] * y[Y])
+        r_min = min(r_min, r_now)
+        r_max = max(r_max, r_now)
         if record:
-            nodes, n_nodes = _record(nodes, n_nodes, y, f)
-        fac = maxfac if en == 0.0 else min(maxfac, SAFETY * math.exp(-expo * math.log(en)))
+            nodes, n_nodes, stride = _record(nodes, n_nodes, stride, stats[ST_ACC], False, y, f)
+        if en == 0.0:
+            fac = maxfac
+        elif implicit:
+            fac = min(maxfac, SAFETY * math.exp(-expo * math.log(en)))
+        else:
+            fac = min(maxfac, max(0.2, SAFETY * math.exp(
+                -(expo - 0.75 * PI_BETA) * math.log(en) + PI_BETA * math.log(en_old))))
+        en_old = max(en, 1e-4)
         if last_rejected:
             fac = min(1.0, fac)
         last_rejected = False
         h *= fac
-    return status, y[TAU], y, stats, r_min, nodes, n_nodes
+    if record and stats[ST_ACC] % stride != 0:  # the last state, off the stride
+        nodes, n_nodes, stride = _record(nodes, n_nodes, stride, stats[ST_ACC], True, y, f)
+    return status, y[TAU], y, stats, r_min, r_max, nodes, n_nodes

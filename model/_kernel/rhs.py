@@ -1,15 +1,7 @@
 """Right-hand side and analytic Jacobian of one support, Eqs. (3)-(6), compiled.
 
-State vector (N_STATE = 12): the motion (x, y, v_x, v_y, theta), six quadratures
-integrated alongside it (MODEL.md, "What one contact yields") and the time:
-
-    5  W     = int F_f,x dtau             (slab work; the slab moves at speed 1)
-    6  I_y   = int F_f,y dtau
-    7  D_x   = -int F_f,x v_R,x dtau      (Eq. 13)
-    8  D_y   = -int F_f,y v_R,y dtau
-    9  int (theta - theta0)^2 dtau        (for Delta theta_rms, Fig. 10f)
-    10 int (r - 1)^2 dtau                 (for Delta r_rms)
-    11 tau
+State vector (N_STATE = 12, slots named in ``slots``): the motion (x, y, v_x, v_y,
+theta), six quadratures integrated alongside it, and the time tau.
 
 Pivot regularisation (Sundman transformation). The independent variable is s with
 dtau/ds = w(r) = (r^2 + DELTA^2) / (r^2 + R_S^2), and every derivative is multiplied by
@@ -28,9 +20,8 @@ import math
 
 from numba import njit
 
-N_STATE = 12
-N_MOTION = 5
-TAU = 11
+from .slots import D_X, D_Y, I_Y, N_MOTION, N_STATE, S_R, S_TH, TAU, THETA, VX, VY, W, X, Y
+
 R_S = 1e-6
 DELTA = 1e-14
 # Slots of the parameter array P.
@@ -105,29 +96,38 @@ def sundman(r2, P):
 @njit(cache=True, error_model="numpy")
 def rhs(u, P, out):
     """du/ds for the 12-component state: w(r) times Eqs. (5), (6), the quadratures, 1."""
-    x, y, vx, vy, th = u[0], u[1], u[2], u[3], u[4]
+    x, y, vx, vy, th = u[X], u[Y], u[VX], u[VY], u[THETA]
     dth = th - P[TH0]
-    q, p, r, _ = _elastic(x, y, dth, P)
+    # _elastic inlined with one division by r^2 shared by q, p and theta'.
+    r2 = x * x + y * y
+    if r2 > 0.0:
+        r = math.sqrt(r2)
+        inv_r2 = 1.0 / r2
+        lam = P[LAM]
+        g = -P[K_R] * (r - 1.0) + math.exp(-r / lam) / (2.0 * lam)
+        q = g * r * inv_r2
+        p = -P[K_TH] * dth * inv_r2
+        om = (x * vy - y * vx) * inv_r2
+    else:
+        r = q = p = om = 0.0
     vrx = vx - 1.0
     s = math.sqrt(vrx * vrx + vy * vy)
     c = -P[FN] * mu_over_s(s, P)
     Fx = c * vrx
     Fy = c * vy
-    out[0] = vx
-    out[1] = vy
-    out[2] = q * x - p * y + Fx
-    out[3] = q * y + p * x + Fy
-    out[4] = (x * vy - y * vx) / (r * r) if r > 0.0 else 0.0
-    out[5] = Fx
-    out[6] = Fy
-    out[7] = -Fx * vrx
-    out[8] = -Fy * vy
-    out[9] = dth * dth
-    out[10] = (r - 1.0) * (r - 1.0)
-    out[11] = 1.0
-    w, _ = sundman(x * x + y * y, P)
-    for i in range(N_STATE):
-        out[i] *= w
+    w, _ = sundman(r2, P)
+    out[X] = w * vx
+    out[Y] = w * vy
+    out[VX] = w * (q * x - p * y + Fx)
+    out[VY] = w * (q * y + p * x + Fy)
+    out[THETA] = w * om
+    out[W] = w * Fx
+    out[I_Y] = w * Fy
+    out[D_X] = -w * Fx * vrx
+    out[D_Y] = -w * Fy * vy
+    out[S_TH] = w * dth * dth
+    out[S_R] = w * (r - 1.0) * (r - 1.0)
+    out[TAU] = w
 
 
 @njit(cache=True, error_model="numpy")
@@ -137,13 +137,13 @@ def jacobian(u, P, f, J):
     ``f`` is ``rhs(u)``, the w-scaled derivative. The quadratures and tau never feed
     back, so their columns are zero and omitted.
     """
-    x, y, vx, vy, th = u[0], u[1], u[2], u[3], u[4]
+    x, y, vx, vy, th = u[X], u[Y], u[VX], u[VY], u[THETA]
     dth = th - P[TH0]
     for i in range(J.shape[0]):
         for j in range(J.shape[1]):
             J[i, j] = 0.0
-    J[0, 2] = 1.0
-    J[1, 3] = 1.0
+    J[X, VX] = 1.0
+    J[Y, VY] = 1.0
     q, p, r, phi = _elastic(x, y, dth, P)
     if r > 0.0:
         r2 = r * r
@@ -153,19 +153,19 @@ def jacobian(u, P, f, J):
         pth = -P[K_TH] / r2  # dp/dtheta
         xr = x / r
         yr = y / r
-        J[2, 0] = q + x * qp * xr - y * pp * xr
-        J[2, 1] = x * qp * yr - p - y * pp * yr
-        J[3, 0] = y * qp * xr + p + x * pp * xr
-        J[3, 1] = q + y * qp * yr + x * pp * yr
-        J[2, 4] = -y * pth
-        J[3, 4] = x * pth
+        J[VX, X] = q + x * qp * xr - y * pp * xr
+        J[VX, Y] = x * qp * yr - p - y * pp * yr
+        J[VY, X] = y * qp * xr + p + x * pp * xr
+        J[VY, Y] = q + y * qp * yr + x * pp * yr
+        J[VX, THETA] = -y * pth
+        J[VY, THETA] = x * pth
         L = x * vy - y * vx
-        J[4, 0] = vy / r2 - 2.0 * L * x / (r2 * r2)
-        J[4, 1] = -vx / r2 - 2.0 * L * y / (r2 * r2)
-        J[4, 2] = -y / r2
-        J[4, 3] = x / r2
-        J[10, 0] = 2.0 * (r - 1.0) * xr
-        J[10, 1] = 2.0 * (r - 1.0) * yr
+        J[THETA, X] = vy / r2 - 2.0 * L * x / (r2 * r2)
+        J[THETA, Y] = -vx / r2 - 2.0 * L * y / (r2 * r2)
+        J[THETA, VX] = -y / r2
+        J[THETA, VY] = x / r2
+        J[S_R, X] = 2.0 * (r - 1.0) * xr
+        J[S_R, Y] = 2.0 * (r - 1.0) * yr
     vrx = vx - 1.0
     s = math.sqrt(vrx * vrx + vy * vy)
     m, dm_s = mu_over_s_and_slope(s, P)
@@ -176,27 +176,27 @@ def jacobian(u, P, f, J):
     F00 = -fN * (m + dm_s * vrx * vrx)
     F01 = -fN * dm_s * vrx * vy
     F11 = -fN * (m + dm_s * vy * vy)
-    J[2, 2] += F00
-    J[2, 3] += F01
-    J[3, 2] += F01
-    J[3, 3] += F11
-    J[5, 2] = F00
-    J[5, 3] = F01
-    J[6, 2] = F01
-    J[6, 3] = F11
-    J[7, 2] = -(F00 * vrx + Fx)
-    J[7, 3] = -F01 * vrx
-    J[8, 2] = -F01 * vy
-    J[8, 3] = -(F11 * vy + Fy)
-    J[9, 4] = 2.0 * dth
+    J[VX, VX] += F00
+    J[VX, VY] += F01
+    J[VY, VX] += F01
+    J[VY, VY] += F11
+    J[W, VX] = F00
+    J[W, VY] = F01
+    J[I_Y, VX] = F01
+    J[I_Y, VY] = F11
+    J[D_X, VX] = -(F00 * vrx + Fx)
+    J[D_X, VY] = -F01 * vrx
+    J[D_Y, VX] = -F01 * vy
+    J[D_Y, VY] = -(F11 * vy + Fy)
+    J[S_TH, THETA] = 2.0 * dth
     # Product rule for w(r) f: J <- w J + f (grad w)^T, grad w = (dw/dr / r) (x, y).
     w, dw_r = sundman(x * x + y * y, P)
     for i in range(N_STATE):
         fi = f[i] / w
         for j in range(N_MOTION):
             J[i, j] *= w
-        J[i, 0] += fi * dw_r * x
-        J[i, 1] += fi * dw_r * y
+        J[i, X] += fi * dw_r * x
+        J[i, Y] += fi * dw_r * y
 
 
 @njit(cache=True, error_model="numpy", inline="always")

@@ -17,22 +17,25 @@ warmup
     Compile the kernel into numba's on-disk cache (run once after installing).
 
 Exit codes: 0 success, 1 the integration ran but did not succeed (results are printed
-anyway), 2 bad usage (one line on stderr naming the offending flag), 130 interrupted
-(Ctrl-C).
+anyway), 2 bad usage (one line on stderr naming the offending flag; also a request for
+more memory than the machine has, checked before any work), 130 interrupted (Ctrl-C),
+141 the output was closed early (``| head``).
 """
 from __future__ import annotations
 
 import json
 import math
+import os
 import sys
 
 from ..friction import mu0
 from ..options import METHODS, SolverOptions
 from ..params import Params
+from ..quantities import describe
 from ..support import simulate_support
-from . import array, reproduce, sweep
+from . import array, design, reproduce, snippet, sweep
 from ._common import (FIELD_FLAGS, PROG, CommandParser, UsageError, add_stiffness,
-                      as_usage_error, jsonable, real, stiffness, table, whole)
+                      as_usage_error, check_memory, jsonable, real, stiffness, table, whole)
 
 __all__ = ["main", "build_parser", "UsageError", "CommandParser", "FIELD_FLAGS", "PROG"]
 
@@ -83,9 +86,26 @@ def _support_inputs(args) -> tuple[Params, SolverOptions]:
     return params, options
 
 
+#: Bytes per time-series sample: the TimeSeries arrays and the interpolation's temporaries.
+SAMPLE_BYTES = 512
+
+
+def _check_support_memory(options: SolverOptions, samples: int) -> None:
+    """The time series' memory, checked before integrating: the recorded step nodes (the
+    kernel keeps at most ``MAX_NODES``, whatever ``--max-steps``; three times that while
+    its buffer grows) and the samples returned."""
+    if samples <= 0:
+        return
+    from .._kernel import MAX_NODES, N_NODE_COLS
+
+    nodes = 3 * min(options.max_steps + 1, MAX_NODES) * N_NODE_COLS * 8
+    check_memory("--samples", nodes + samples * SAMPLE_BYTES, f"{samples:,} samples")
+
+
 def _run_support(args) -> int:
     """``support``: integrate one contact and print it; 0 on success, 1 if the run failed."""
     params, options = _support_inputs(args)
+    _check_support_memory(options, args.samples)
     try:
         result = simulate_support(params, rtol=options.rtol, atol=options.atol,
                                   method=options.method, samples=args.samples,
@@ -134,6 +154,7 @@ def _summary(result, samples: int) -> str:
         ("dtheta_rms", result.dtheta_rms, "orientation fluctuation over the contact [rad] (Fig. 10f)"),
         ("dr_rms", result.dr_rms, "length fluctuation over the contact [r0] (Fig. 10f)"),
         ("r_min", result.r_min, "closest approach of the mass to its pivot [r0]"),
+        ("r_max", result.r_max, describe("r_max")),
         ("pivot_approach", result.pivot_approach,
          f"r fell below the pivot radius {result.pivot_radius:g}"),
     ]
@@ -178,15 +199,28 @@ def build_parser() -> CommandParser:
     commands = parser.add_subparsers(title="commands", metavar="command", dest="command")
     _add_support(commands)
     array.add_command(commands)
+    design.add_command(commands)
     sweep.add_command(commands)
     reproduce.add_command(commands)
     _add_warmup(commands)
+    snippet.add_flag(commands)
     return parser
 
 
 def main(argv: list[str] | None = None) -> int:
     """Run one command; returns the exit code (0 success, 1 failed run, 2 usage error,
     130 interrupted)."""
+    code = _run(argv)
+    if code == 130:
+        # Interrupted and reported: a further Ctrl-C (the terminal sends one to every
+        # process of the group, late ones included) must not break the shutdown with a
+        # traceback while the worker pools are joined.
+        import signal
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+    return code
+
+
+def _run(argv: list[str] | None) -> int:
     parser = build_parser()
     try:
         args = parser.parse_args(argv)
@@ -196,6 +230,9 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help(sys.stderr)
         return 2
     try:
+        from .._kernel import announce_cold_start
+
+        announce_cold_start(sys.stderr)
         return args.run(args)
     except UsageError as error:
         print(f"{PROG} {args.command}: error: {error}", file=sys.stderr)
@@ -203,3 +240,6 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print(f"\n{PROG} {args.command}: interrupted", file=sys.stderr)
         return 130
+    except BrokenPipeError:  # the reader of the output left (`... | head`): stop quietly
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no error at exit
+        return 141

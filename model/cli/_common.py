@@ -3,13 +3,18 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import re
+import sys
+import tempfile
+from pathlib import Path
 
 import numpy as np
 
 from ..params import REGIMES
 
-PROG = "python -m model"
+#: How the user called the command line: its usage lines and errors repeat it.
+PROG = "micropillar" if Path(sys.argv[0]).name == "micropillar" else "python -m model"
 
 #: Argument names in the model's ``ValueError`` messages -> the flag that sets them.
 FIELD_FLAGS = {
@@ -142,3 +147,78 @@ def table(sections) -> str:
         lines += [f"  {name:<{name_width}}  {value:>{value_width}}  {meaning}".rstrip()
                   for name, value, meaning in section]
     return "\n".join(lines)
+
+
+# --------------------------------------------------------------------------- resources
+
+def memory_budget() -> int:
+    """Bytes one command may plan to hold: half the memory the system has available as
+    it starts (``MemAvailable``; the physical memory where that is unknown)."""
+    try:
+        with open("/proc/meminfo", encoding="ascii") as info:
+            for line in info:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024 // 2
+    except (OSError, ValueError, IndexError):
+        pass
+    try:
+        return os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE") // 2
+    except (AttributeError, ValueError, OSError):
+        return 2 * 1024**3
+
+
+def _size(nbytes: float) -> str:
+    for unit in ("B", "kB", "MB", "GB", "TB", "PB"):
+        if nbytes < 1000 or unit == "PB":
+            return f"{nbytes:.3g} {unit}"
+        nbytes /= 1000
+    raise AssertionError("unreachable")
+
+
+def check_memory(flag: str, nbytes: float, what: str) -> None:
+    """``UsageError`` naming ``flag`` when ``what`` would need more than ``memory_budget``;
+    called before any work starts."""
+    budget = memory_budget()
+    if nbytes > budget:
+        raise UsageError(flag, f"{what} would need about {_size(nbytes)} of memory, more than "
+                               f"the {_size(budget)} this command may use (half the memory "
+                               f"available); lower {flag}")
+
+
+# --------------------------------------------------------------------------- output files
+
+def output_file(flag: str, text: str) -> Path:
+    """The file ``text`` names, checked before any work: not a folder or a device, in an
+    existing folder where a file can be created (tried, not guessed)."""
+    out = Path(text)
+    if out.is_dir():
+        raise UsageError(flag, f"{text!r} is a folder; name a file in it, such as "
+                               f"{str(out / 'sweep.csv')!r}")
+    if out.exists() and not out.is_file():
+        raise UsageError(flag, f"{text!r} exists and is not a regular file")
+    if not out.parent.is_dir():
+        raise UsageError(flag, f"directory {str(out.parent)!r} does not exist")
+    try:
+        fd, probe = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent)
+    except OSError as error:
+        raise UsageError(flag, f"cannot write into {str(out.parent)!r}: "
+                               f"{error.strerror or error}") from None
+    os.close(fd)
+    os.unlink(probe)
+    return out
+
+
+def output_folder(flag: str, text: str) -> Path:
+    """The folder ``text`` names, created if missing, checked before any work: a folder
+    (not a file) where a file can be created (tried, not guessed)."""
+    out = Path(text)
+    if out.exists() and not out.is_dir():
+        raise UsageError(flag, f"{text!r} exists and is not a folder")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        fd, probe = tempfile.mkstemp(prefix=".probe.", suffix=".tmp", dir=out)
+    except OSError as error:
+        raise UsageError(flag, f"cannot write into {text!r}: {error.strerror or error}") from None
+    os.close(fd)
+    os.unlink(probe)
+    return out

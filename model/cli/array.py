@@ -7,6 +7,7 @@ import math
 from ..fixed import fixed_orientation
 from ..params import Params
 from ..uniform import uniform_array
+from . import orientations
 from ._common import (UsageError, add_atol_method, add_stiffness, as_usage_error, beta_value,
                       jsonable, real, stiffness, table)
 
@@ -26,8 +27,9 @@ def add_command(commands) -> None:
     add_stiffness(model)
     model.add_argument("--F-N", type=real, default=1.0, metavar="F",
                        help="normal load F_N per support at rest (default 1)")
-    model.add_argument("--orientation", choices=("uniform", "fixed"),
-                       help="uniform (default) or fixed; --theta0 alone implies fixed")
+    model.add_argument("--orientation", choices=("uniform", "fixed", *orientations.ORIENTATIONS),
+                       help="uniform (default), fixed, or a distribution: pair (+-theta0), "
+                            "vonmises, mixture, csv (histogram); --theta0 alone implies fixed")
     model.add_argument("--theta0", type=real, metavar="T",
                        help="common rest orientation of a fixed array in radians (default pi/2)")
     model.add_argument("--beta", type=beta_value, default="self", metavar="self|B",
@@ -41,6 +43,7 @@ def add_command(commands) -> None:
                         help="relative tolerance per contact (default: tol/100, at most 1e-5, "
                              "for uniform arrays; 1e-6 for fixed)")
     add_atol_method(solver)
+    orientations.add_arguments(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=run)
 
@@ -59,6 +62,9 @@ def _orientation(args) -> str:
 def run(args) -> int:
     """``array``: compute one array and print it; 0 on success, 1 if it did not succeed."""
     orientation = _orientation(args)
+    if orientation in orientations.ORIENTATIONS:
+        return orientations.run(args, orientation)
+    orientations.reject_foreign(args, orientation)
     k_r, k_theta = stiffness(args)
     theta0 = math.pi / 2 if args.theta0 is None else args.theta0
     try:

@@ -8,9 +8,8 @@ results, not failures), 2 bad usage, 130 interrupted.
 from __future__ import annotations
 
 import sys
-from pathlib import Path
 
-from ._common import PROG, UsageError, whole
+from ._common import PROG, UsageError, output_folder, whole
 from .sweep import ProgressBar
 
 
@@ -59,11 +58,9 @@ def run(args, draw=None) -> int:
     """Run it; ``draw`` as in ``model.reproduce.reproduce`` (None: tables and report only)."""
     from ..reproduce import reproduce
 
-    out = Path(args.out)
-    if out.exists() and not out.is_dir():
-        raise UsageError("--out", f"{str(out)!r} exists and is not a folder")
     if args.workers < 1:
         raise UsageError("--workers", f"{args.workers} must be at least 1")
+    out = output_folder("--out", args.out)
     progress = StageProgress(sys.stderr)
     try:
         rep = reproduce(out, resolution=args.resolution, workers=args.workers,

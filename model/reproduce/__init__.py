@@ -5,13 +5,15 @@ Figs. 3, 5a/b, 6, 7a/b, 8a/b, 10a-f and 11a-c and writes into ``out``:
 
 * ``figN.csv`` -- each figure's data, with the parameters and solver settings in a
   ``# key: value`` header (``model.sweeps.read_csv`` reads it back);
-* ``report.md`` and ``index.html`` -- the findings of the paper (MODEL.md 1-7) against
+* ``report.md`` and ``index.html`` -- the findings of the paper (docs/model.md, "What the
+  paper reports", 1-7) against
   the computed numbers with their error estimates, where the model differs, and how
   the headline numbers move with the choices the paper left open.
 
 Drawing is the caller's (this package imports no plotting library): ``draw(data, out,
-progress)`` returns, per figure key, the HTML file and the PNG file (or None) it wrote,
-and a note on pictures it could not make. ``python -m app.reproduce`` passes the
+progress)`` returns, per figure key, the HTML file and the PNG, SVG and PDF files (None
+where not made; a shorter tuple leaves the rest None) it wrote, and a note on pictures it
+could not make. ``python -m app.reproduce`` passes the
 dashboard's figure functions (standalone HTML, and PNG through headless Chromium).
 Uniform-array points go through the on-disk cache, so a second run is quick.
 """
@@ -39,6 +41,8 @@ class FigureFiles:
     csv: Path
     html: Path | None = None
     png: Path | None = None
+    svg: Path | None = None
+    pdf: Path | None = None
 
 
 @dataclass

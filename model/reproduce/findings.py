@@ -1,4 +1,4 @@
-"""The paper's findings (MODEL.md, "What the paper reports", 1-7) checked on the numbers
+"""The paper's findings (docs/model.md, "What the paper reports", 1-7) checked on the numbers
 behind the reproduced figures.
 
 Each ``Check`` states the claim, the computed quantity, its value with the error
@@ -209,7 +209,7 @@ def extra(data):
     i, j = np.unravel_index(np.nanargmax(m.FTx_over_mu0FN), m.shape)
     jump = float(np.max(np.diff(m.Nc_over_Nc0, axis=0))) if m.k_r.size > 1 else 0.0
     return [
-        Check("extra", "μ₀ = μ(V₀) ≈ 1.0085 (MODEL.md)", "μ(1) with μ_s = 1.3, A = 1.44, "
+        Check("extra", "μ₀ = μ(V₀) ≈ 1.0085 (the value quoted with the paper's friction constants)", "μ(1) with μ_s = 1.3, A = 1.44, "
               "B = −20, ζ = 10", f"{mu0():.5f}", "exact", "|μ₀ − 1.0085| < 5e-5",
               abs(mu0() - 1.0085) < 5e-5, "friction law (Eq. 4)", "3"),
         Check("extra", "Supports never raise friction above rigid contact (Fig. 5a shows none)",
@@ -224,6 +224,6 @@ def extra(data):
 
 
 def all_checks(data: Data) -> list:
-    """Every check, in the order of MODEL.md's findings, then the extra results."""
+    """Every check, in the order of the findings in docs/model.md, then the extra results."""
     return [c for fn in (finding_1, finding_2, finding_3, finding_4, finding_5, finding_6,
                          finding_7, extra) for c in fn(data)]

@@ -6,6 +6,7 @@ import html
 import platform
 from pathlib import Path
 
+from ..files import write_text_atomic
 from ..params import REGIMES
 
 
@@ -64,7 +65,8 @@ def markdown(rep) -> str:
     lines += ["## Figures", ""]
     for f in rep.figures:
         links = [f"[{kind}]({path.name})" for kind, path in
-                 (("HTML", f.html), ("CSV", f.csv), ("PNG", f.png)) if path is not None]
+                 (("HTML", f.html), ("CSV", f.csv), ("PNG", f.png), ("SVG", f.svg),
+                  ("PDF", f.pdf)) if path is not None]
         lines.append(f"- Fig. {f.spec.number}: {f.spec.caption} — {', '.join(links)}")
     if rep.png_note:
         lines += ["", f"Pictures missing: {rep.png_note}."]
@@ -104,16 +106,19 @@ def index_html(rep) -> str:
              "<h2>Sensitivity</h2>",
              _html_table(SENSITIVITY_HEADER, sensitivity_rows(rep.variants)), "<h2>Figures</h2>"]
     for f in rep.figures:
-        img = f"<img src='{f.png.name}' alt='Fig. {f.spec.number}'>" if f.png else ""
+        picture = f.png or f.svg
+        img = f"<img src='{picture.name}' alt='Fig. {f.spec.number}'>" if picture else ""
         parts.append(f"<figure>{img}<figcaption>Fig. {f.spec.number}: "
                      f"{html.escape(f.spec.caption)} — "
                      + (f"<a href='{f.html.name}'>interactive</a>, " if f.html else "")
+                     + "".join(f"<a href='{p.name}'>{kind}</a>, " for kind, p in
+                               (("SVG", f.svg), ("PDF", f.pdf)) if p is not None)
                      + f"<a href='{f.csv.name}'>data (CSV)</a></figcaption></figure>")
     return "\n".join(parts) + "\n"
 
 
 def write(rep, out: Path) -> tuple[Path, Path]:
     md, index = out / "report.md", out / "index.html"
-    md.write_text(markdown(rep), encoding="utf-8")
-    index.write_text(index_html(rep), encoding="utf-8")
+    write_text_atomic(md, markdown(rep))
+    write_text_atomic(index, index_html(rep))
     return md, index

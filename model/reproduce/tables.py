@@ -9,12 +9,17 @@ from typing import Callable
 import numpy as np
 
 from ..friction import mu
+from ..params import DEFAULTS
+from ..quantities import MAP_FIGURES, POLAR_FIGURES, label
 from .datasets import THETA_FIG10, Data, rows_of
 
 UNIFORM = {"beta": "self-consistent", "average": "paper (Eq. 10)", "F_N": 1.0}
 SERIES = ("tau", "x", "y", "v_x", "v_y", "r", "F_x", "F_y", "F_abs")
 #: Fig. 11 panel -> the orientation-table column it shows.
-POLAR_COLUMNS = {"11a": "FTx_over_mu0FN", "11b": "Dy_over_Dx", "11c": "FTy_over_mu0FN"}
+POLAR_COLUMNS = POLAR_FIGURES
+#: Columns of the regime map (Fig. 5) in its table.
+MAP_COLUMNS = ("FTx_over_mu0FN", "FTx_over_mu0FN_duration", "Dy_over_Dx", "Nc_over_Nc0", "beta",
+               "quadrature_error", "success", "n_failed", "n_pivot")
 
 
 @dataclass(frozen=True)
@@ -46,15 +51,14 @@ def series_table(data: Data, keys, names=SERIES):
 
 def _law_table(data):
     v = np.linspace(0.0, 2.0, 301)
-    return {"v_over_V0": v, "mu": mu(v)}, {"mu_s": 1.3, "A": 1.44, "B": -20.0, "zeta": 10.0}
+    return {"v_over_V0": v, "mu": mu(v)}, {k: DEFAULTS[k] for k in ("mu_s", "A", "B", "zeta")}
 
 
 def _map_table(data):
     m = data.regime_map
     i, j = np.meshgrid(np.arange(m.k_r.size), np.arange(m.k_theta.size), indexing="ij")
     cols = {"k_r": m.k_r[i.ravel()], "k_theta": m.k_theta[j.ravel()]}
-    for name in ("FTx_over_mu0FN", "FTx_over_mu0FN_duration", "Dy_over_Dx", "Nc_over_Nc0",
-                 "beta", "quadrature_error", "success", "n_failed", "n_pivot"):
+    for name in MAP_COLUMNS:
         cols[name] = np.asarray(getattr(m, name))[i.ravel(), j.ravel()]
     return cols, {**UNIFORM, "tol": data.resolution.tol, "grid": f"{m.k_r.size} x log"}
 
@@ -76,11 +80,12 @@ def _specs() -> list:
              "fig10c": ("pendulum", ("x", "y")), "fig10d": ("pendulum", ("v_x", "v_y"))}
     specs = [
         FigureSpec("fig3", "3", "Friction law μ(v), μ_s = 1.3, A = 1.44, B = −20", _law_table),
-        FigureSpec("fig5a", "5a", "Uniform arrays: F_T,x/(μ₀F_N) over (k_r, k_θ), F_N = 1",
-                   _map_table),
-        FigureSpec("fig5b", "5b", "Uniform arrays: D_y/D_x over (k_r, k_θ), F_N = 1",
-                   _map_table),
-        FigureSpec("fig6", "6", "Uniform arrays: F_T,x/(μ₀F_N) against F_N, four regimes",
+    ]
+    specs += [FigureSpec(f"fig{n}", n, f"Uniform arrays: {label(q)} over (k_r, k_θ), F_N = 1",
+                         _map_table) for n, q in MAP_FIGURES.items()]
+    specs += [
+        FigureSpec("fig6", "6", f"Uniform arrays: {label('FTx_over_mu0FN')} against F_N, "
+                   "four regimes",
                    lambda d: (d.load.columns, {**UNIFORM, **d.load.settings})),
     ]
     specs += [FigureSpec(key, key[3:], f"Friction on one support, {r}, θ₀ = π/2, F_N = 1",
@@ -88,7 +93,8 @@ def _specs() -> list:
                                                      ("tau", "F_x", "F_y", "F_abs")))
               for key, r in fig7.items()]
     specs += [
-        FigureSpec("fig8a", "8a", "Uniform arrays: N_c/N_c0 against k_r, several k_θ",
+        FigureSpec("fig8a", "8a",
+                   f"Uniform arrays: {label('Nc_over_Nc0')} against k_r, several k_θ",
                    lambda d: (d.stiffness.columns, {**UNIFORM, **d.stiffness.settings})),
         FigureSpec("fig8b", "8b", "Uniform arrays: split of the slab work against k_r, "
                    "k_θ = 0.03", lambda d: (rows_of(d.stiffness, k_theta=0.03),
@@ -99,14 +105,14 @@ def _specs() -> list:
                              d, [(r, lb) for lb in THETA_FIG10], ("tau", *p)))
               for key, (r, p) in fig10.items()]
     specs += [
-        FigureSpec("fig10e", "10e", "Support length r̃ against τ, slider and pendulum",
+        FigureSpec("fig10e", "10e", f"Support length {label('r')} against τ, slider and pendulum",
                    lambda d: series_table(d, [(r, lb) for r in ("slider", "pendulum")
                                               for lb in THETA_FIG10], ("tau", "r"))),
-        FigureSpec("fig10f", "10f", "Δθ_rms and Δr̃_rms against θ₀, slider and pendulum",
+        FigureSpec("fig10f", "10f",
+                   f"{label('dtheta_rms')} and {label('dr_rms')} against θ₀, slider and pendulum",
                    lambda d: _orientation_table(d, ("dtheta_rms", "dr_rms"))),
     ]
-    labels = {"11a": "F_T,x/(μ₀F_N)", "11b": "D_y/D_x", "11c": "F_T,y/(μ₀F_N)"}
-    specs += [FigureSpec(f"fig{n}", n, f"Fixed arrays: {labels[n]} vs θ₀, pendulum and slider "
+    specs += [FigureSpec(f"fig{n}", n, f"Fixed arrays: {label(c)} vs θ₀, pendulum and slider "
                          "(polar)", lambda d, c=c: _orientation_table(
                              d, (c, "beta", "relative_residual", "success")))
               for n, c in POLAR_COLUMNS.items()]

@@ -43,7 +43,8 @@ def browser_required() -> bool:
     return flag not in ("", "0", "false", "no") or ci not in ("", "0", "false", "no")
 
 
-def _unavailable(reason: str):
+def unavailable(reason: str):
+    """A missing browser: a failure in CI, a skip on a developer's machine."""
     if browser_required():
         pytest.fail(f"browser tests are required here (CI / MICROPILLAR_REQUIRE_BROWSER) "
                     f"but {reason}", pytrace=False)
@@ -106,11 +107,11 @@ def app_url(app_server) -> str:
 def browser():
     """Debian's headless Chromium, launched by Playwright."""
     if not Path(CHROMIUM).exists():
-        _unavailable(f"{CHROMIUM} is missing (install Debian's package: apt-get install chromium)")
+        unavailable(f"{CHROMIUM} is missing (install Debian's package: apt-get install chromium)")
     try:
         from playwright.sync_api import sync_playwright
     except ImportError:
-        _unavailable("Playwright is not installed (pip install -e \".[test]\")")
+        unavailable("Playwright is not installed (pip install -e \".[test]\")")
     with sync_playwright() as playwright:
         chromium = launch_chromium(playwright)
         yield chromium

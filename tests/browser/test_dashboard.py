@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import math
 import re
-import time
 from urllib.parse import parse_qs, urlsplit
 
 import pytest
@@ -71,14 +70,6 @@ def _no_errors(page_log) -> None:
     assert page_log.errors == [], "JavaScript errors:\n" + "\n".join(page_log.errors)
 
 
-def _wait_for(page, predicate, timeout_s: float = 20.0, what: str = "condition") -> None:
-    deadline = time.monotonic() + timeout_s
-    while not predicate():
-        if time.monotonic() > deadline:
-            pytest.fail(f"timed out after {timeout_s:.0f} s waiting for {what}", pytrace=False)
-        page.wait_for_timeout(100)
-
-
 # ---------------------------------------------------------------------------- the page
 
 def test_page_loads_without_console_errors(page, page_log, app_url):
@@ -134,7 +125,7 @@ def test_a_preset_button_changes_the_orbit(page, page_log, app_url, preset):
     changed = pt.wait_for_data_change(page, before, ORBIT, timeout_s=30)
     assert changed, f"the {preset} preset did not change the orbit"
     k_r, k_theta = PRESETS[preset]
-    _wait_for(page, lambda: _close(_value(page, "k_r"), k_r, 1e-6)
+    pt.wait_for(page, lambda: _close(_value(page, "k_r"), k_r, 1e-6)
               and _close(_value(page, "k_theta"), k_theta, 1e-6), timeout_s=10,
               what="the preset's springs")
     _no_errors(page_log)
@@ -147,7 +138,7 @@ def test_clicking_the_regime_map_sets_the_springs(page, page_log, app_url):
     before = pt.data_sources(page, ["regime_now"])
     target = (0.1, 0.5)
     pt.click_plot(page, "regime_map", *target)
-    _wait_for(page, lambda: _close(_value(page, "k_r"), target[0], 0.05)
+    pt.wait_for(page, lambda: _close(_value(page, "k_r"), target[0], 0.05)
               and _close(_value(page, "k_theta"), target[1], 0.05), timeout_s=10,
               what=f"k_r, k_theta near {target}")
     assert pt.wait_for_data_change(page, before, ["regime_now"], timeout_s=10), \
@@ -163,7 +154,7 @@ def test_url_parameters_restore_the_controls(page, page_log, app_url):
     assert not page.locator(".page-notice").is_visible(), page.locator(".page-notice").inner_text()
     # The address bar follows the controls, so a reload shows the same view.
     pt.move_slider(page, _handle(page, "theta0"), "ArrowRight", presses=2)
-    _wait_for(page, lambda: parse_qs(urlsplit(page.url).query).get("theta0_deg") == ["47"],
+    pt.wait_for(page, lambda: parse_qs(urlsplit(page.url).query).get("theta0_deg") == ["47"],
               what=f"theta0_deg=47 in the URL (now {page.url})")
     page.reload()
     pt.wait_for_app(page, page.url)
@@ -185,17 +176,35 @@ def test_bad_url_values_fall_back_with_a_notice(page, page_log, app_url):
     _no_errors(page_log)
 
 
-def test_the_player_advances(page, page_log, app_url):
+def _frame(page, name: str = "support_player_frame"):
+    return page.evaluate("(n) => { const m = Bokeh.documents[0].get_model_by_name(n); "
+                         "return m ? m.value : null; }", name)
+
+
+def test_the_player_advances_in_the_browser(page, page_log, app_url):
+    """The animation runs in the page: frames advance and the mass moves with no message
+    to the server per frame."""
+    sent = []
+    page.on("websocket", lambda ws: ws.on("framesent", lambda payload: sent.append(payload)))
     _open(page, app_url)
-    start = pt.model_value(page, "Player$", "value", "player")
-    assert start is not None, "no player in the page"
+    assert _frame(page) == 0, "no browser-side player in the page"
     before = pt.data_sources(page, ["scene_mass"])
-    page.locator(".player .play").first.click()
-    _wait_for(page, lambda: pt.model_value(page, "Player$", "value", "player") != start,
-              timeout_s=10, what="the player to advance")
+    page.get_by_role("button", name="▶ Play").first.click()
+    pt.wait_for(page, lambda: (_frame(page) or 0) > 10, timeout_s=10,
+              what="the player to advance")
+    count = len(sent)
+    page.wait_for_timeout(1500)  # ~45 frames at 1x
+    assert (_frame(page) or 0) > 30
+    assert len(sent) - count <= 2, f"{len(sent) - count} messages to the server while playing"
     assert pt.wait_for_data_change(page, before, ["scene_mass"], timeout_s=10), \
         "the animated mass did not move"
-    page.locator(".player .pause").first.click()
+    page.keyboard.press("Space")  # pause
+    page.wait_for_timeout(300)
+    paused = _frame(page)
+    page.wait_for_timeout(500)
+    assert _frame(page) == paused, "Space did not pause the animation"
+    page.keyboard.press("ArrowRight")
+    pt.wait_for(page, lambda: _frame(page) == paused + 1, timeout_s=5, what="one step forward")
     _no_errors(page_log)
 
 

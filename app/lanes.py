@@ -1,0 +1,164 @@
+"""Lanes of worker processes: what a lane is, its process pool and its queues, one per
+client and session, served in turn (used by ``app.jobs.WorkPool``)."""
+from __future__ import annotations
+
+import collections
+import concurrent.futures as cf
+import logging
+import multiprocessing
+import os
+import time
+from collections import OrderedDict
+from dataclasses import dataclass
+
+log = logging.getLogger("app.jobs")
+
+#: Seconds of one worker a job may take, by default.
+DEFAULT_BUDGET_S = 5.0
+#: Seconds new worker processes may take to start (spawn, imports, the compiled kernel)
+#: before their jobs' budgets run anyway; until they answer, no job's clock runs, so a
+#: restart after a stopped job does not eat the budgets of the jobs run again.
+STARTUP_BUDGET_S = 60.0
+
+
+
+@dataclass(frozen=True)
+class Lane:
+    """A group of worker processes: how many, and how nice (lower CPU priority) they are."""
+
+    name: str
+    workers: int
+    nice: int
+    doc: str
+
+
+def _workers_for_background() -> int:
+    """One background worker per core beyond the one the server and the interactive lane
+    share (at least one)."""
+    return max(1, (os.cpu_count() or 2) - 1)
+
+
+LANES = {
+    "interactive": Lane("interactive", 1, 0, "the single support (Support tab)"),
+    "background": Lane("background", _workers_for_background(), 10,
+                       "sweeps, uniform arrays, load curves"),
+}
+def _init_worker(nice: int) -> None:
+    """Worker start: lower the CPU priority, load the compiled kernel."""
+    if nice:
+        try:
+            os.nice(nice)
+        except OSError:  # not permitted: run at normal priority
+            pass
+    from . import worker
+    worker.warm()
+
+
+@dataclass
+class Job:
+    key: object
+    fn: object
+    args: tuple
+    kwargs: dict
+    future: cf.Future          # handed to the caller
+    waiters: list              # futures of identical requests, resolved with this one
+    budget_s: float = DEFAULT_BUDGET_S
+    client: object = None
+    session: object = None
+    started: float = 0.0       # monotonic time the job was handed to a worker
+    over_budget: bool = False
+    collateral: bool = False   # stopped with another job's worker: run again
+
+    def live(self) -> bool:
+        return not self.future.cancelled() or any(not w.cancelled() for w in self.waiters)
+
+
+class LaneRunner:
+    """One lane: its process pool, per-session queues served in turn, its running jobs.
+    ``pool`` is the ``WorkPool`` it belongs to (told when a dropped job is forgotten)."""
+
+    def __init__(self, lane: Lane, pool):
+        self.lane, self.pool = lane, pool
+        #: client -> session -> waiting jobs; both levels are served in turn.
+        self.queues: OrderedDict[object, OrderedDict] = OrderedDict()
+        self.running: dict = {}  # inner future -> job
+        self.executor = None
+        self.started = 0  # jobs handed to the executor (statistics)
+        self.created_at = 0.0     # monotonic time the current workers were started
+        self.ready_at = None      # ... and the time the first of them answered
+
+    def _executor(self):
+        if self.executor is None or getattr(self.executor, "_broken", False):
+            if self.executor is not None:
+                log.warning("dashboard workers of lane %r stopped (%s); starting new ones",
+                            self.lane.name, self.executor._broken)
+            self.executor = cf.ProcessPoolExecutor(
+                max_workers=self.lane.workers, mp_context=multiprocessing.get_context("spawn"),
+                initializer=_init_worker, initargs=(self.lane.nice,))
+            self.created_at, self.ready_at = time.monotonic(), None
+            self._ping(self.executor)
+        return self.executor
+
+    def _ping(self, executor) -> None:
+        """Start every worker at once; note when the first one answers."""
+        from .worker import ping
+
+        def answered(_future):
+            if self.executor is executor and self.ready_at is None:
+                self.ready_at = time.monotonic()
+        for _ in range(self.lane.workers):
+            executor.submit(ping).add_done_callback(answered)
+
+    def run_time(self, job: "Job", now: float) -> float:
+        """Seconds ``job`` has had a working worker: its budget's clock. It starts when
+        the job was handed over or when the workers answered, whichever is later."""
+        if self.ready_at is None:
+            return max(0.0, now - self.created_at - STARTUP_BUDGET_S)
+        return now - max(job.started, self.ready_at)
+
+    def queued(self) -> int:
+        return sum(len(q) for sessions in self.queues.values() for q in sessions.values())
+
+    def add(self, job: Job, front: bool = False) -> None:
+        sessions = self.queues.setdefault(job.client, OrderedDict())
+        queue = sessions.setdefault(job.session, collections.deque())
+        (queue.appendleft if front else queue.append)(job)
+        if front:
+            self.queues.move_to_end(job.client, last=False)
+            sessions.move_to_end(job.session, last=False)
+
+    def next_job(self) -> Job | None:
+        """The first live job of the next client's next session in turn (both move to
+        the back of their lines)."""
+        while self.queues:
+            client, sessions = next(iter(self.queues.items()))
+            session, queue = next(iter(sessions.items()))
+            job = None
+            while queue and job is None:
+                candidate = queue.popleft()
+                if candidate.live():
+                    job = candidate
+                else:
+                    self.pool._forget(candidate)
+            del sessions[session]
+            if queue:
+                sessions[session] = queue  # back of the client's line
+            del self.queues[client]
+            if sessions:
+                self.queues[client] = sessions  # back of the line of clients
+            if job is not None:
+                return job
+        return None
+
+    def stop_workers(self) -> None:
+        """Stop every worker process of this lane (it is started anew on the next job)."""
+        executor, self.executor = self.executor, None
+        self.created_at, self.ready_at = time.monotonic(), None
+        if executor is None:
+            return
+        for process in list(getattr(executor, "_processes", {}).values()):
+            try:
+                process.kill()
+            except Exception:  # already gone
+                pass
+        executor.shutdown(wait=False, cancel_futures=True)

@@ -1,0 +1,65 @@
+"""A session's held document changes sent to its browser as one message.
+
+Bokeh's ``Document.unhold()`` hands the held changes to the server session one at a time,
+and the session sends each as its own ``PATCH-DOC`` message; every message costs the
+server a pass over all of the document's models (``Serializer(references=...)``: about
+400 models on this page) besides its own websocket frames. One update of the Support tab
+changes ~30 properties (sources, ranges, readouts), so a slider move cost ~30 such passes
+per session: measured in ``benchmarks/bench_dashboard.py`` ("one message per change" vs
+"one message").
+
+``release(doc)`` ends a hold begun with ``doc.hold(...)`` like ``unhold()``, but sends the
+held changes of a served session in one ``PATCH-DOC`` per connection, written through
+Bokeh's own locked write path (the session's pending writes, awaited before its document
+lock is released), so ordering with the session's other messages is kept. Anything it
+cannot batch -- no server session, another listener on the document, a change made by
+the session itself -- goes through ``unhold()`` as before.
+"""
+from __future__ import annotations
+
+import logging
+
+from bokeh.document.callbacks import invoke_with_curdoc
+from bokeh.document.events import DocumentPatchedEvent
+
+log = logging.getLogger(__name__)
+
+
+def _batchable_session(doc):
+    """The server session whose pending writes take ``doc``'s held changes, or None."""
+    context = getattr(doc, "session_context", None)
+    session = getattr(context, "_session", None)
+    callbacks = doc.callbacks
+    if (session is None or getattr(session, "_pending_writes", None) is None
+            or tuple(callbacks._change_callbacks) != (session,)):
+        return None
+    return session
+
+
+def release(doc) -> int:
+    """End ``doc``'s hold and send what it held; the number of ``PATCH-DOC`` messages
+    sent as one batch per connection (0: handed to ``unhold()``)."""
+    callbacks = doc.callbacks
+    session = _batchable_session(doc) if callbacks.hold_value else None
+    if session is None:
+        doc.unhold()
+        return 0
+    held, callbacks._held_events = list(callbacks._held_events), []
+    callbacks._hold = None
+    batch = [e for e in held if isinstance(e, DocumentPatchedEvent) and e.setter is not session]
+    if not batch:
+        for event in held:
+            callbacks.trigger_on_change(event)
+        return 0
+    for event in batch:  # Python callbacks of the changed properties, as unhold() runs them
+        if event.callback_invoker is not None:
+            invoke_with_curdoc(doc, event.callback_invoker)
+    sent = 0
+    for connection in list(session._subscribed_connections):
+        message = connection.protocol.create("PATCH-DOC", batch)
+        session._pending_writes.append(connection._socket.send_message(message))
+        sent += 1
+    for event in held:
+        if event not in batch:
+            callbacks.trigger_on_change(event)
+    return sent

@@ -1,0 +1,83 @@
+"""The Array tab: the slab sliding over a grid of ~100 supports, seen from above (Figs. 2a
+and 4 of the paper, live). Supports under the slab move along their own trajectories,
+enter contact at the slab's leading edge and are released at their tau_out; each is
+coloured by the direction of its friction force; N_c is counted live against N_c0 (so
+beta = N_c0/N_c shows) and the running F_T,x/(mu0 F_N) settles as the array does.
+
+A renderer of ``SessionResults.array`` (``model.array_motion``, computed once per
+parameter set in a worker): every frame goes to the browser once and a browser-side
+player draws them -- no server round trip per frame.
+"""
+from __future__ import annotations
+
+import panel as pn
+import param
+from bokeh.layouts import column
+
+from ..figures.array_scene import array_scene
+from ..figures.player import browser_player
+from ..results import SessionResults
+from ..state import ExplorerState
+from .export import AnimationExport
+
+
+class ArrayView(pn.viewable.Viewer):
+    """The array under the slab, its player and its live counts."""
+
+    state = param.ClassSelector(class_=ExplorerState, constant=True)
+    results = param.ClassSelector(class_=SessionResults, constant=True)
+
+    def __init__(self, **params):
+        super().__init__(**params)
+        self._doc = pn.state.curdoc
+        self.player = None
+        self.toggle = pn.widgets.RadioButtonGroup.from_param(
+            self.state.param.orientation, css_classes=["ctl-orientation"],
+            options={"θ₀ uniform (all directions)": "uniform",
+                     "every support at θ₀ (slider)": "fixed"}, description=None,
+            margin=(4, 10))
+        self.status = pn.pane.Markdown("", css_classes=["array-status"],
+                                       styles={"font-size": "0.92em"}, margin=(0, 10))
+        self.pane = pn.pane.Bokeh(None, css_classes=["array-view"], margin=(0, 5),
+                                  sizing_mode="stretch_width")
+        self.export = AnimationExport(state=self.state, results=self.results, what="array")
+        self._draw()
+        self._on_busy()
+
+    @param.depends("results.array", watch=True)
+    def _draw(self) -> None:
+        motion = self.results.array
+        if motion is None:
+            return
+        self.player = browser_player(motion.n_frames, times=motion.t, name="array_player",
+                                     autoplay=self.state.play, responsive=True, width=900)
+        scene = array_scene(motion, self.player, width=900, responsive=True)
+        self.pane.object = column(self.player.layout, scene, sizing_mode="stretch_width",
+                                  name="array_page")
+        if self._doc is not None:
+            # Keys and autoplay start with a change the page sees: once the page has loaded
+            # (a result that came before), or once the new models are in a loaded page.
+            player = self.player
+            pn.state.onload(lambda: self._doc.add_timeout_callback(player.ready, 300))
+        m = motion.model
+        self.status.object = (
+            f"{motion.n_supports} supports on a {motion.n_rows} × {motion.n_cols} grid, "
+            f"θ₀ {'uniform' if self.state.orientation == 'uniform' else 'fixed'}; "
+            f"array model: N_c/N_c0 = {m['Nc_over_Nc0']:.3g}, "
+            f"F_T,x/(μ₀F_N) = {m['FTx_over_mu0FN_duration']:.3g} (dashed lines)."
+            + ("" if motion.success else f" ⚠ {motion.message}"))
+
+    @param.depends("results.busy", "results.errors", watch=True)
+    def _on_busy(self) -> None:
+        busy = "array" in self.results.busy
+        self.pane.loading = busy
+        error = self.results.errors.get("array", "")
+        if error:
+            self.status.object = error
+        elif busy and self.results.array is None:
+            self.status.object = "Computing the supports' trajectories …"
+
+    def __panel__(self):
+        return pn.Column(self.toggle, self.status, self.pane, self.export,
+                         sizing_mode="stretch_width",
+                         css_classes=["array-tab"])

@@ -1,0 +1,103 @@
+"""What the page does in the browser itself: the address bar, coarse slider keys and the
+screen width.
+
+``PageBehaviour`` is an invisible ``JSComponent`` placed once in the page:
+
+* **Address bar and history.** ``search`` is written by the server (debounced, the
+  state's ``?k_r=...``); the browser pushes it as a history entry only when it differs
+  from the address bar (on opening, the address is rewritten in place, as the page read
+  it). Back/Forward (``popstate``) send the entry's search string back
+  as ``popped`` (``pops`` counts them, so the same entry twice is seen twice); the page
+  then restores that state and writes it back as ``replace_search``, which replaces the
+  entry (no new one, so Forward still works). ``acked`` tells which steps the server has
+  restored; an address the server wrote before the latest step arrives late and is
+  dropped, so quick Back/Back/Forward never rewrites the wrong entry. Panel's own ``pn.state.location`` pushes on every change and
+  never reports Back, which is why it is not used for this.
+* **PageUp/PageDown on a slider** move it by a tenth of its range (rounded to its step),
+  whatever its arrow-key step; noUiSlider's own page step is 5 arrow steps and cannot be
+  changed after Bokeh creates it.
+* **Narrow screens.** ``narrow`` is True when the page is first shown on a screen
+  narrower than ``NARROW_PX`` (a phone): the page folds its controls away there.
+"""
+from __future__ import annotations
+
+import param
+from panel.custom import JSComponent
+
+#: Widest screen (CSS px) that gets the phone layout; the stylesheet uses the same bound.
+NARROW_PX = 700
+
+
+class PageBehaviour(JSComponent):
+    """Browser-side behaviour of the page (address bar, history, slider page keys)."""
+
+    search = param.String(default="", doc="the state's URL search string, '?k_r=...'")
+    replace_search = param.String(default="", doc="a search string that replaces the current "
+                                  "history entry (a restored state written canonically)")
+    popped = param.String(default="", doc="the search string of the entry Back/Forward showed")
+    pops = param.Integer(default=0, doc="how many Back/Forward steps the page has seen")
+    acked = param.Integer(default=0, doc="the Back/Forward steps the server has restored: "
+                          "an address written before the latest step is stale and dropped")
+    narrow = param.Boolean(default=False, doc="first shown on a screen < NARROW_PX wide")
+    page_fraction = param.Number(default=0.1, bounds=(0.01, 1.0),
+                                 doc="PageUp/PageDown move a slider by this part of its range")
+
+    _esm = """
+    function sliderOf(path) {
+      const handle = path.find((el) => el.classList && el.classList.contains("noUi-handle"));
+      if (!handle || !window.Bokeh) return null;
+      for (const doc of Bokeh.documents) {
+        for (const m of doc.all_models) {
+          if (!/Slider$/.test(m.type) || typeof m.value !== "number") continue;
+          const view = Bokeh.index.find_one(m);
+          const root = view && (view.shadow_el || view.el);
+          if (root && root.contains(handle)) return m;
+        }
+      }
+      return null;
+    }
+
+    export function render({ model, el }) {
+      el.style.display = "none";
+      const onPop = () => {
+        model.popped = window.location.search;
+        model.pops = model.pops + 1;
+      };
+      const onKey = (event) => {
+        if (event.key !== "PageUp" && event.key !== "PageDown") return;
+        const slider = sliderOf(event.composedPath());
+        if (slider === null || slider.disabled) return;
+        event.preventDefault();
+        event.stopPropagation();
+        const span = slider.end - slider.start;
+        const sign = event.key === "PageUp" ? 1 : -1;
+        const step = slider.step > 0 ? slider.step : span / 100;
+        let value = slider.value + sign * model.page_fraction * span;
+        value = slider.start + Math.round((value - slider.start) / step) * step;
+        value = Math.min(Math.max(value, slider.start), slider.end);
+        slider.value = value;
+        if ("value_throttled" in slider) slider.value_throttled = value;
+      };
+      const write = (search, replace) => {
+        if (!search || search === window.location.search) return;
+        // Written before the server saw the latest Back/Forward: it would overwrite the
+        // entry now shown (or cut off the Forward entries), so it is dropped.
+        if (model.acked < model.pops) return;
+        const url = window.location.pathname + search + window.location.hash;
+        if (replace) window.history.replaceState({}, "", url);
+        else window.history.pushState({}, "", url);
+      };
+      const push = () => write(model.search, false);
+      const replace = () => write(model.replace_search, true);
+      window.addEventListener("popstate", onPop);
+      window.addEventListener("keydown", onKey, true);
+      model.on("search", push);
+      model.on("replace_search", replace);
+      model.on("remove", () => {
+        window.removeEventListener("popstate", onPop);
+        window.removeEventListener("keydown", onKey, true);
+      });
+      model.narrow = window.innerWidth < NARROW;
+      write(model.search, true);  // the address as the page reads it, with no new entry
+    }
+    """.replace("NARROW", str(NARROW_PX))

@@ -1,0 +1,42 @@
+"""This view as code: the Python snippet (public ``model`` API) that reproduces the numbers
+on the page for the current controls (``app.snippet.view_as_python``), folded in a card,
+and the software's version and how to cite it."""
+from __future__ import annotations
+
+import panel as pn
+import param
+
+from ..about import version_text
+from ..results import SessionResults
+from ..snippet import view_as_python
+from ..state import ExplorerState
+
+
+class CodeView(pn.viewable.Viewer):
+    """A folded card with the snippet of the current view; the version line below it."""
+
+    state = param.ClassSelector(class_=ExplorerState, constant=True)
+    results = param.ClassSelector(class_=SessionResults, constant=True)
+
+    def __init__(self, **params):
+        super().__init__(**params)
+        self.code = pn.pane.Markdown("", css_classes=["view-as-code"],
+                                     sizing_mode="stretch_width", styles={"font-size": "0.8em"})
+        self.card = pn.Card(self.code, title="This view as Python", collapsed=True,
+                            css_classes=["ctl-code"], sizing_mode="stretch_width",
+                            margin=(4, 3))
+        self.version = pn.pane.Markdown(
+            f"{version_text()} · cite with `CITATION.cff`", css_classes=["version"],
+            margin=(0, 10), styles={"font-size": "0.8em", "color": "#555"})
+        self._write()
+
+    @param.depends("state.k_r", "state.k_theta", "state.F_N", "state.theta0", "state.rtol",
+                   "state.beta_mode", "state.beta", "state.average", watch=True)
+    def _write(self) -> None:
+        try:
+            self.code.object = f"```python\n{view_as_python(self.state)}```"
+        except ValueError as exc:  # a state the model refuses: say so
+            self.code.object = f"*No snippet for these controls: {exc}*"
+
+    def __panel__(self):
+        return pn.Column(self.card, self.version, sizing_mode="stretch_width", margin=0)

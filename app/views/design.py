@@ -1,0 +1,291 @@
+"""The Design tab: a real micropillar array in physical units, where it sits on the regime
+map, an orientation distribution over the Fig. 11a curve of its springs, the array's
+readouts (dimensionless and physical) and the best distribution on request.
+
+Renderer of ``SessionResults.design_point``, ``.design_array``, ``.design_polar`` and
+``.design_optimum``; the inputs and the distribution are ``ExplorerState`` parameters
+(so a shared link restores them).
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import panel as pn
+import param
+
+from model.shipped_map import load_regime_map
+
+from .. import figures as F
+from ..figures.design import (design_map_data, design_map_figure, design_polar_data,
+                              design_polar_figure)
+from ..figures.polar import set_extent
+from ..results import SessionResults, optimum_family
+from ..state import ExplorerState
+from ..urlstate import DESIGN_INPUTS
+from .widgets import caption, look
+
+FAMILY_LABELS = {"von Mises": "vonmises", "pair ±θ₀": "pair", "fixed θ₀": "fixed",
+                 "uniform": "uniform"}
+OBJECTIVE_LABELS = {"least F_T,x": "min-FTx", "largest |F_T,y|": "max-FTy"}
+#: What the bound of each objective limits (a force over μ₀F_N).
+BOUND_OF = {"min-FTx": "|F_T,y|", "max-FTy": "F_T,x"}
+STATUS_WORDS = {"in_map": "inside the paper's explored map",
+                "outside_map": "outside the paper's explored map [0.01, 3]² (same model, "
+                               "beyond the paper's figures)",
+                "scaled": "beyond the model range: computed scaled along its speed line",
+                "unusable": "not computable"}
+
+
+def _g(x, digits: int = 3) -> str:
+    return "–" if x is None or not math.isfinite(x) else f"{x:.{digits}g}"
+
+
+def _speeds(interval) -> str:
+    if interval is None:
+        return "out of reach"
+    lo, hi = interval
+    if lo <= 0:
+        return f"V₀ < {_g(hi)} m/s"
+    if not math.isfinite(hi):
+        return f"V₀ > {_g(lo)} m/s"
+    return f"{_g(lo)} – {_g(hi)} m/s"
+
+
+def _locked(draw) -> None:
+    """Edit the Bokeh figures with the session's document locked: a text input's change
+    reaches the watchers outside Bokeh's lock (an edit there raises in the server), so
+    with a server the edit waits for the next tick, which Bokeh runs locked."""
+    doc = pn.state.curdoc
+    if doc is not None and doc.session_context is not None:
+        doc.add_next_tick_callback(draw)
+    else:
+        draw()
+
+
+class DesignView(pn.viewable.Viewer):
+    """Physical inputs -> the point on the map, the distribution editor, readouts, optimum."""
+
+    state = param.ClassSelector(class_=ExplorerState, constant=True)
+    results = param.ClassSelector(class_=SessionResults, constant=True)
+
+    def __init__(self, **params):
+        super().__init__(**params)
+        s = self.state
+        self.inputs = {name: pn.widgets.TextInput.from_param(
+            s.param[name], **caption(label), width=94, margin=(0, 3),
+            css_classes=[f"ctl-{name}"]) for name, (_, _, label, _) in DESIGN_INPUTS.items()}
+        self.family = pn.widgets.Select.from_param(
+            s.param.dist_family, options=FAMILY_LABELS, **caption("Orientations"), width=96,
+            margin=(0, 3), css_classes=["ctl-dist_family"])
+        self.angle = pn.widgets.FloatInput.from_param(
+            s.param.dist_deg, **caption("θ₀, mean [°]"), step=5, width=80, margin=(0, 3),
+            css_classes=["ctl-dist_deg"])
+        self.kappa = pn.widgets.FloatInput.from_param(
+            s.param.dist_kappa, **caption("κ"), step=0.5, width=58, margin=(0, 3),
+            css_classes=["ctl-dist_kappa"])
+        self.psi = pn.widgets.FloatInput.from_param(
+            s.param.dist_psi, **caption("ψ [°]"), step=5, width=58, margin=(0, 3),
+            css_classes=["ctl-dist_psi"])
+        # A second component, mixed in with weight w (0: none).
+        self.mix = pn.widgets.FloatInput.from_param(
+            s.param.mix_weight, **caption("+ weight w"), step=0.1, width=70, margin=(0, 3),
+            css_classes=["ctl-mix_weight"])
+        self.family2 = pn.widgets.Select.from_param(
+            s.param.dist2_family, options=FAMILY_LABELS, **caption("mixed with"), width=96,
+            margin=(0, 3), css_classes=["ctl-dist2_family"])
+        self.angle2 = pn.widgets.FloatInput.from_param(
+            s.param.dist2_deg, **caption("θ₀, mean [°]"), step=5, width=80, margin=(0, 3),
+            css_classes=["ctl-dist2_deg"])
+        self.kappa2 = pn.widgets.FloatInput.from_param(
+            s.param.dist2_kappa, **caption("κ"), step=0.5, width=58, margin=(0, 3),
+            css_classes=["ctl-dist2_kappa"])
+        self.objective = pn.widgets.Select.from_param(
+            s.param.opt_objective, options=OBJECTIVE_LABELS, **caption("Optimise for"),
+            width=120, margin=(0, 3), css_classes=["ctl-opt_objective"])
+        self.bound = pn.widgets.FloatInput.from_param(
+            s.param.opt_bound, **caption(""), step=0.01, width=110, margin=(0, 3),
+            placeholder="none", css_classes=["ctl-opt_bound"])
+        self.optimise_button = pn.widgets.Button(**caption("Optimise"), **look("primary"),
+                                                 width=90, css_classes=["design-optimise"])
+        self.cancel_button = pn.widgets.Button(**caption("Cancel"), **look("light"), width=70,
+                                               disabled=True, css_classes=["design-cancel"])
+        self.optimise_button.on_click(lambda _e: self.results.optimise())
+        self.cancel_button.on_click(lambda _e: self.results.cancel_optimum())
+        self.point_text = pn.pane.Markdown("", width=310, margin=(0, 5),
+                                           styles={"font-size": "0.88em"},
+                                           css_classes=["design-point"])
+        self.readouts = pn.pane.Markdown("", width=310, margin=(0, 5),
+                                         styles={"font-size": "0.88em"},
+                                         css_classes=["design-readouts"])
+        self.optimum_text = pn.pane.Markdown("", width=310, margin=(0, 5),
+                                             styles={"font-size": "0.88em"},
+                                             css_classes=["design-optimum"])
+        try:
+            shipped = load_regime_map()
+        except (OSError, ValueError):
+            shipped = None
+        self.map_figure = design_map_figure(shipped, self.results.design_point)
+        self.polar_figure = design_polar_figure(None, s.distribution, s.dist_psi)
+        self._map_sources = F.sources(self.map_figure)
+        self._polar_sources = F.sources(self.polar_figure)
+        self.map_pane = pn.pane.Bokeh(self.map_figure, margin=0)
+        self.polar_pane = pn.pane.Bokeh(self.polar_figure, margin=0)
+        self._ticker = None
+        for fig in (self.map_figure, self.polar_figure):
+            F.style(fig, s.projector)
+        self._on_point()
+        self._on_polar()
+        self._on_array()
+        self._on_optimum()
+
+    # ------------------------------------------------------------------ the point
+    @param.depends("results.design_point", "results.errors", watch=True)
+    def _on_point(self) -> None:
+        pt = self.results.design_point
+        error = self.results.errors.get("design_point", "")
+        data, xr, yr = design_map_data(pt)
+
+        def draw():
+            F.update(self._map_sources, data)
+            self.map_figure.x_range.update(start=xr[0], end=xr[1])
+            self.map_figure.y_range.update(start=yr[0], end=yr[1])
+        _locked(draw)
+        if error and (pt is None or error != pt.get("error")):
+            self.point_text.object = f"**Not computed:** {error}"
+            return
+        if pt is None:
+            self.point_text.object = "Computing the design's point …"
+            return
+        p, c = pt["point"], pt["computed"]
+        lines = [f"**k̃_r = {_g(p['k_r'])}, k̃_θ = {_g(p['k_theta'])}, "
+                 f"F̃_N = {_g(p['F_N'])}, ζ = {_g(p['zeta'])}, L₀ = {_g(p['L0'])}**",
+                 f"Regime: **{pt['regime']}**; {STATUS_WORDS[pt['status']]}."]
+        if pt["status"] == "scaled" and c is not None:
+            lines.append(f"Computed at k̃_r = {_g(c['k_r'])}, k̃_θ = {_g(c['k_theta'])}, "
+                         f"F̃_N = {_g(c['F_N'])} (×{_g(c['scale'])}, as at V₀ = "
+                         f"{_g(pt['V0_m_per_s'] / math.sqrt(c['scale']))} m/s): the "
+                         "quasi-static limit of these stiff pillars.")
+        if pt["error"]:
+            lines.append(f"**Not computable:** {pt['error']}")
+        speeds = pt["intervals"]["V0_m_per_s"]
+        reach = "; ".join(f"{r}: {_speeds(speeds[r])}" for r in
+                          ("stiff", "pendulum", "slider", "soft"))
+        lines.append(f"Regimes by speed — {reach}; the paper's map: "
+                     f"{_speeds(pt['intervals']['V0_in_explored_map_m_per_s'])}.")
+        lines.append("On the map: ★ this design, dashed: its path as V₀ changes"
+                     + (", ■ the point computed." if pt["status"] == "scaled" else "."))
+        self.point_text.object = "  \n".join(lines)
+
+    # ------------------------------------------------------------------ the polar curve
+    @param.depends("results.design_polar", "state.dist_family", "state.dist_deg",
+                   "state.dist_kappa", "state.dist_psi", "state.mix_weight",
+                   "state.dist2_family", "state.dist2_deg", "state.dist2_kappa", watch=True)
+    def _on_polar(self) -> None:
+        s = self.state
+        data, axis = design_polar_data(self.results.design_polar, s.distribution, s.dist_psi)
+
+        def draw():
+            F.update(self._polar_sources, {k: v for k, v in data.items()
+                                           if k in self._polar_sources})
+            set_extent(self.polar_figure, axis)
+        _locked(draw)
+        self.kappa.disabled = s.dist_family != "vonmises"
+        self.angle.disabled = s.dist_family == "uniform"
+        second = s.mix_weight > 0
+        self.family2.disabled = not second
+        self.kappa2.disabled = not second or s.dist2_family != "vonmises"
+        self.angle2.disabled = not second or s.dist2_family == "uniform"
+
+    # ------------------------------------------------------------------ readouts
+    @param.depends("results.design_array", "results.busy", "results.errors", watch=True)
+    def _on_array(self) -> None:
+        r = self.results
+        a, busy = r.design_array, "design_array" in r.busy
+        error = r.errors.get("design_array", "")
+        if a is None:
+            self.readouts.object = error or ("Computing the array …" if busy else
+                                             "The array is computed for a usable design.")
+            return
+        arr = a["array"]
+        q = arr["quadrature_error"]
+        rows = [
+            ("F_T,x/(μ₀F_N) (Eq. 10)", f"{arr['FTx_over_mu0FN']:.4f} ± {q.get('FTx_over_mu0FN', math.nan):.1e}"),
+            ("… duration-weighted", f"{arr['FTx_over_mu0FN_duration']:.4f}"),
+            ("F_T,y/(μ₀F_N)", f"{arr['FTy_over_mu0FN']:.4f} ± {q.get('FTy_over_mu0FN', math.nan):.1e}"),
+            ("D_y/D_x", f"{arr['Dy_over_Dx']:.4f}"),
+            ("N_c/N_c0, β", f"{arr['Nc_over_Nc0']:.4f}, {arr['beta']:.4f}"),
+            ("drive force F_T,x", f"{_g(a['FTx_N'])} N (F_T,y {_g(a['FTy_N'])} N)"),
+            ("power F_T,x V₀", f"{_g(a['power_W'])} W"),
+            ("contact time", f"{_g(a['contact_time_s'])} s"),
+            ("excursion r, θ (rms)", f"{_g(a['excursion_r_um'])}, "
+                                     f"{_g(a['excursion_theta_um'])} µm"),
+        ]
+        table = "| the array | |\n|:--|--:|\n" + "\n".join(f"| {k} | {v} |" for k, v in rows)
+        note = "" if a["success"] else f"\n\n**Not converged:** {a['message']}"
+        if busy:
+            note += "\n\n*Updating …*"
+        elif error:
+            note += f"\n\n{error}"
+        self.readouts.object = table + note
+
+    # ------------------------------------------------------------------ the optimum
+    @param.depends("results.design_optimum", "results.optimum_note", "results.busy",
+                   "results.errors", "state.dist_family", "state.mix_weight",
+                   "state.opt_objective", watch=True)
+    def _on_optimum(self) -> None:
+        r = self.results
+        running = "design_optimum" in r.busy and r.optimum_started is not None
+        self.optimise_button.disabled = running
+        self.cancel_button.disabled = not running
+        self._tick(running)
+        text = r.optimum_note
+        if running and r.optimum_started is not None:
+            text += f" {time.monotonic() - r.optimum_started:.0f} s so far."
+        error = r.errors.get("design_optimum", "")
+        if error and not running:
+            text = error
+        o = r.design_optimum
+        if o is not None and not running:
+            text += (f"  \nOptimum ({o['family']}): F_T,x/(μ₀F_N) = {o['FTx_over_mu0FN']:.4f}, "
+                     f"F_T,y/(μ₀F_N) = {o['FTy_over_mu0FN']:.4f} (± {o['error_estimate']:.1e});"
+                     f" uniform array {o['uniform_FTx_over_mu0FN']:.4f}: "
+                     f"**{100 * o['gain']:.1f} % less friction**"
+                     + ("" if o["feasible"] else " — **the bound could not be met**") + ".")
+        self.bound.name = f"bound on {BOUND_OF[self.state.opt_objective]}/(μ₀F_N)"
+        if not text:
+            family = optimum_family(self.state)
+            names = {v: k for k, v in FAMILY_LABELS.items()}
+            what = ("the least F_T,x" if self.state.opt_objective == "min-FTx"
+                    else "the largest |F_T,y|")
+            text = (f"**Optimise** searches the {names.get(family, family)} family for {what}"
+                    " (in the background; the editor is then set to the optimum).")
+        self.optimum_text.object = text
+
+    def _tick(self, running: bool) -> None:
+        """Refresh the elapsed time once a second while the search runs (with a server)."""
+        if running and self._ticker is None and pn.state.curdoc is not None \
+                and pn.state.curdoc.session_context is not None:
+            self._ticker = pn.state.add_periodic_callback(self._on_optimum, period=1000)
+        elif not running and self._ticker is not None:
+            self._ticker.stop()
+            self._ticker = None
+
+    @param.depends("state.projector", watch=True)
+    def _restyle(self) -> None:
+        for fig in (self.map_figure, self.polar_figure):
+            F.style(fig, self.state.projector)
+
+    def __panel__(self):
+        grid = pn.GridBox(*self.inputs.values(), ncols=3, margin=(0, 0))
+        left = pn.Column(pn.pane.Markdown("**Pillar array** (values with units)",
+                                          margin=(0, 5)), grid, self.point_text, width=315)
+        right = pn.Column(
+            pn.Row(self.family, self.angle, self.kappa, self.psi, margin=0),
+            pn.Row(self.family2, self.angle2, self.kappa2, self.mix, margin=0),
+            self.readouts, pn.Row(self.objective, self.bound, margin=0),
+            pn.Row(self.optimise_button, self.cancel_button, margin=0),
+            self.optimum_text, width=315)
+        return pn.Row(left, pn.Column(self.map_pane, self.polar_pane, margin=0, width=330),
+                      right,
+                      css_classes=["design-view"])

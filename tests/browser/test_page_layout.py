@@ -1,0 +1,340 @@
+"""The page as a teacher projects it, a student holds it and a researcher reads it.
+
+Sizes are measured in the page (bounding boxes of the Bokeh figures, of buttons and slider
+handles); the history is driven with the browser's own Back/Forward. Screenshots of every
+tab, normal and projector, at 1280x720, 1920x1080 and on a 390x844 phone are saved to
+``$MICROPILLAR_SCREENSHOTS`` (default: a temporary folder) for a person to look at.
+"""
+from __future__ import annotations
+
+import math
+import os
+import re
+import tempfile
+from pathlib import Path
+from urllib.parse import parse_qs, urlsplit
+
+import pytest
+
+from . import page_tools as pt
+
+pytestmark = [pytest.mark.browser, pytest.mark.timeout(240)]
+
+FULL_HD = {"width": 1920, "height": 1080}
+PHONE = {"width": 390, "height": 844}
+#: tab key -> (tab-bar label, the figures the tab shows)
+TABS = {"support": ("One support", ("scene", "forces", "friction_law", "energy_live")),
+        "polar": ("Orientation", ("polar_FTx", "polar_DyDx", "polar_FTy")),
+        "map": ("Regime map", ("regime_map",)),
+        "load": ("Load", ("load",))}
+
+# Bounding boxes (CSS px) of the visible Bokeh figures called ``names``.
+_FIGURE_BOXES_JS = """(names) => {
+  const out = {};
+  for (const m of Bokeh.documents[0].all_models) {
+    if (!names.includes(m.name) || /DataSource$/.test(m.type) || !("x_range" in m)) continue;
+    const view = Bokeh.index.find_one(m);
+    if (!view) continue;
+    const r = view.el.getBoundingClientRect();
+    if (r.width > 0 && r.height > 0) out[m.name] = [r.left, r.top, r.width, r.height];
+  }
+  return out;
+}"""
+
+# Bounding boxes of the elements matching ``selector`` anywhere in the page, shadow roots
+# included (Bokeh and Panel draw widgets inside shadow DOM).
+_BOXES_JS = """(selector) => {
+  const out = [];
+  const walk = (root) => {
+    for (const el of root.querySelectorAll(selector)) {
+      const r = el.getBoundingClientRect();
+      if (r.width > 0 && r.height > 0) out.push([r.left, r.top, r.width, r.height]);
+    }
+    for (const el of root.querySelectorAll("*")) if (el.shadowRoot) walk(el.shadowRoot);
+  };
+  walk(document);
+  return out;
+}"""
+
+
+#: The browser-side player's buttons, by their tooltips (app/figures/player.py).
+PLAYER_TIPS = ("Play or pause (Space)", "One frame back (←)", "One frame forward (→)",
+               "Back to the first frame (Home)", "Start again at the end (L)")
+
+
+def _open(page, url: str) -> None:
+    pt.wait_for_app(page, url)
+    pt.settle(page)
+
+
+def _new_page(browser, viewport):
+    context = browser.new_context(viewport=viewport)
+    context.set_default_timeout(30_000)
+    return context, context.new_page()
+
+
+def _figures(page, names) -> dict:
+    return page.evaluate(_FIGURE_BOXES_JS, list(names))
+
+
+def _visible_area(box, viewport) -> float:
+    left, top, width, height = box
+    w = max(0.0, min(left + width, viewport["width"]) - max(left, 0.0))
+    h = max(0.0, min(top + height, viewport["height"]) - max(top, 0.0))
+    return w * h
+
+
+def _query(page) -> dict:
+    return {k: v[-1] for k, v in parse_qs(urlsplit(page.url).query).items()}
+
+
+def _slider(page, css: str) -> pt.SliderInfo:
+    info = pt.find_slider(page, css)
+    assert info is not None, f"no slider .{css}"
+    return info
+
+
+def _controls_width(page) -> float:
+    boxes = page.evaluate(_BOXES_JS, ".sidebar")
+    return boxes[0][2] if boxes else 0.0
+
+
+# ---------------------------------------------------------------------------- projector
+
+@pytest.mark.parametrize("tab", list(TABS))
+def test_projector_mode_at_1920_fills_the_screen_with_figures(browser, app_url, tab):
+    """The figures cover most of the area beside the controls (they used to fill half the
+    screen at 1920x1080) and, with the controls folded away, most of the screen; they lie
+    inside it and grow with the window."""
+    label, names = TABS[tab]
+    context, page = _new_page(browser, FULL_HD)
+    screen = FULL_HD["width"] * FULL_HD["height"]
+
+    def covered():
+        for name in names:
+            pt.wait_for_plot(page, name)
+        boxes = _figures(page, names)
+        assert set(boxes) == set(names), f"figures shown: {sorted(boxes)}"
+        for name, (left, top, width, height) in boxes.items():
+            assert left >= 0 and left + width <= FULL_HD["width"] + 1, (name, boxes[name])
+            assert top + height <= FULL_HD["height"] + 1, f"{name} runs off the screen"
+        return boxes, sum(_visible_area(b, FULL_HD) for b in boxes.values())
+
+    try:
+        _open(page, f"{app_url}?tab={tab}&projector=1")
+        boxes, area = covered()
+        beside = (FULL_HD["width"] - _controls_width(page)) * FULL_HD["height"]
+        page.locator(".sidebar").get_by_text("Controls", exact=True).first.click()
+        pt.wait_for(page, lambda: _controls_width(page) < 200, what="the controls to fold")
+        page.wait_for_timeout(800)
+        _, folded = covered()
+        print(f"{tab}: figures cover {area / beside:.0%} of the area beside the controls; "
+              f"controls folded: {folded / screen:.0%} of the screen")
+        assert area / beside > 0.70, (tab, area / beside, boxes)
+        assert folded / screen > 0.70, (tab, folded / screen)
+        page.locator(".sidebar").get_by_text("Controls", exact=True).first.click()
+        page.set_viewport_size({"width": 1280, "height": 720})
+        page.wait_for_timeout(800)
+        small = _figures(page, names)
+        for name in names:
+            assert boxes[name][2] * boxes[name][3] > 1.5 * small[name][2] * small[name][3], \
+                f"{name} does not grow with the window: {small[name]} -> {boxes[name]}"
+    finally:
+        context.close()
+
+
+def test_projector_mode_has_large_controls_and_labels(browser, app_url):
+    context, page = _new_page(browser, FULL_HD)
+    try:
+        _open(page, f"{app_url}?projector=1")
+        buttons = page.evaluate(_BOXES_JS, ", ".join(f'[title="{t}"]' for t in PLAYER_TIPS))
+        assert len(buttons) >= 5, buttons
+        assert min(b[3] for b in buttons) >= 44 and min(b[2] for b in buttons) >= 44, buttons
+        handles = page.evaluate(_BOXES_JS, ".noUi-handle")
+        assert handles and min(min(b[2], b[3]) for b in handles) >= 28, handles
+        sizes = page.evaluate("""() => {
+          const out = {};
+          for (const m of Bokeh.documents[0].all_models) {
+            if (m.type === "ColorBar") out.colorbar = m.major_label_text_font_size;
+            if (m.type === "Label" && m.name === "scene_time") out.time = m.text_font_size;
+          }
+          return out;
+        }""")
+        assert int(sizes["colorbar"].rstrip("px")) >= 16, sizes
+        # The time label stays inside the scene's frame (it used to be cut off).
+        label = page.evaluate("""() => {
+          const fig = [...Bokeh.documents[0].all_models].find((m) => m.name === "scene");
+          const label = fig.center.find((m) => m.name === "scene_time");
+          const ctx = document.createElement("canvas").getContext("2d");
+          ctx.font = `${label.text_font_size} ${label.text_font}`;
+          const view = Bokeh.index.find_one(fig);
+          return {width: ctx.measureText(label.text).width, frame: view.frame.bbox.width,
+                  size: label.text_font_size};
+        }""")
+        assert label["width"] + 12 <= label["frame"], label
+    finally:
+        context.close()
+
+
+# ---------------------------------------------------------------------------- state
+
+def test_reset_keeps_projector_mode_and_the_tab(page, app_url):
+    _open(page, f"{app_url}?tab=polar&projector=1&k_r=0.5")
+    pt.click_button(page, r"^Reset$")
+    pt.wait_for(page, lambda: math.isclose(10 ** _slider(page, "ctl-k_r").value, 3.0, rel_tol=1e-6),
+              what="k_r back to its default")
+    assert pt.model_value(page, "Toggle$", "active", "ctl-projector") is True
+    pt.wait_for(page, lambda: _query(page).get("k_r") == "3", what=f"k_r=3 in {page.url}")
+    assert _query(page).get("projector") == "1" and _query(page).get("tab") == "polar"
+
+
+def test_back_and_forward_restore_the_state(page, app_url):
+    _open(page, f"{app_url}?theta0_deg=60")
+    start = page.evaluate("() => history.length")
+    pt.move_slider(page, pt.slider_handle(page, "ctl-theta0"), "ArrowRight", presses=2)
+    pt.wait_for(page, lambda: _query(page).get("theta0_deg") == "62", what="theta0_deg=62")
+    page.locator(".preset-soft button").first.click()
+    pt.wait_for(page, lambda: _query(page).get("k_r") == "0.03", what="the soft preset's URL")
+    assert page.evaluate("() => history.length") == start + 2
+    page.go_back()
+    pt.wait_for(page, lambda: math.isclose(10 ** _slider(page, "ctl-k_r").value, 3.0,
+                                         rel_tol=1e-6), what="k_r back to 3 after Back")
+    assert _slider(page, "ctl-theta0").value == 62
+    page.go_back()
+    pt.wait_for(page, lambda: _slider(page, "ctl-theta0").value == 60, what="theta0 back to 60")
+    page.go_forward()
+    pt.wait_for(page, lambda: _slider(page, "ctl-theta0").value == 62, what="theta0 62 again")
+    page.wait_for_timeout(URL_SETTLE_MS)
+    # Restoring writes no new entry, so Forward still leads to the soft preset.
+    assert page.evaluate("() => history.length") == start + 2
+    page.go_forward()
+    pt.wait_for(page, lambda: math.isclose(10 ** _slider(page, "ctl-k_r").value, 0.03,
+                                         rel_tol=1e-6), what="k_r 0.03 after Forward")
+
+
+URL_SETTLE_MS = 1000  # longer than the page's URL debounce
+
+
+@pytest.mark.parametrize("css, log", [("ctl-theta0", False), ("ctl-k_r", True)])
+def test_page_keys_move_a_slider_by_a_tenth_of_its_range(page, app_url, css, log):
+    _open(page, app_url)
+    before = _slider(page, css)
+    span = before.end - before.start
+    handle = pt.slider_handle(page, css)
+    key = "PageDown" if before.value > (before.start + before.end) / 2 else "PageUp"
+    pt.move_slider(page, handle, key, presses=1)
+    pt.wait_for(page, lambda: _slider(page, css).value != before.value, what=f"{css} to move")
+    moved = abs(_slider(page, css).value - before.value)
+    assert abs(moved - span / 10) <= before.step / 2 + 1e-9, (moved, span / 10, before.step)
+    if log:  # arrows: 0.05 decade, about 50 presses across the range
+        assert before.step == pytest.approx(0.05)
+        value = _slider(page, css).value
+        pt.move_slider(page, handle, "ArrowRight", presses=1)
+        pt.wait_for(page, lambda: _slider(page, css).value != value, what="an arrow step")
+        assert abs(_slider(page, css).value - value) == pytest.approx(0.05, abs=1e-6)
+
+
+def _background(page, preset: str) -> str:
+    return page.locator(f".preset-{preset} button").first.evaluate(
+        "(b) => getComputedStyle(b).backgroundColor")
+
+
+def test_the_preset_of_the_current_springs_is_marked(page, app_url):
+    _open(page, app_url)  # the default springs are the pendulum's
+    clear = _background(page, "soft")
+    assert _background(page, "pendulum") != clear
+    page.locator(".preset-soft button").first.click()
+    pt.wait_for(page, lambda: _background(page, "soft") != clear, what="soft to be marked")
+    assert _background(page, "pendulum") == clear
+    pt.move_slider(page, pt.slider_handle(page, "ctl-k_r"), "ArrowRight", presses=1)
+    pt.wait_for(page, lambda: _background(page, "soft") == clear,
+              what="no preset marked off the presets")
+
+
+def test_the_headline_states_the_result_in_words(page, app_url):
+    _open(page, app_url)
+    headline = page.locator(".headline span").first
+    pt.wait_for(page, lambda: "being computed" not in headline.inner_text(), timeout_s=90,
+              what="both results in the headline")
+    text = headline.inner_text()
+    print(text)
+    assert re.search(r"^Friction is \d+\.\d % (below|above) a rigid surface \(every support "
+                     r"at θ₀ = 90°\); averaged over all orientations: ", text), text
+    # The uniform array's number, or the reason it is missing (a notice on the page).
+    tail = text.split("averaged over all orientations: ")[1]
+    assert re.match(r"\d+\.\d % (below|above) a rigid surface\.$", tail) or (
+        tail == "not computed (see the notice)." and page.locator(".page-notice").is_visible())
+    details = page.locator(".readout-details")
+    assert not page.get_by_text("energy residual").first.is_visible()
+    details.get_by_text("Numbers and diagnostics").click()
+    pt.wait_for(page, lambda: page.get_by_text("energy residual").first.is_visible(),
+              what="the diagnostics")
+
+
+# ---------------------------------------------------------------------------- phone
+
+def test_the_phone_layout(browser, app_url):
+    context, page = _new_page(browser, PHONE)
+    try:
+        _open(page, app_url)
+        width = page.evaluate("() => document.scrollingElement.scrollWidth")
+        assert width <= PHONE["width"], f"the page scrolls sideways ({width} px wide)"
+        names = TABS["support"][1]
+        boxes = page.evaluate(_FIGURE_BOXES_JS, list(names))
+        assert set(boxes) == set(names)
+        ordered = sorted(boxes.values(), key=lambda b: b[1])
+        for upper, lower in zip(ordered, ordered[1:]):
+            assert upper[1] + upper[3] <= lower[1] + 1, "two plots share a row"
+        assert all(b[2] >= 0.9 * PHONE["width"] for b in ordered), ordered
+        # The controls start folded above the plots; opened, they are touch-sized.
+        assert not page.locator(".ctl-k_r .noUi-handle").is_visible()
+        page.locator(".sidebar").get_by_text("Controls", exact=True).first.click()
+        pt.wait_for(page, lambda: page.locator(".ctl-k_r .noUi-handle").is_visible(),
+                  what="the controls to open")
+        handle = page.locator(".ctl-k_r .noUi-handle").bounding_box()
+        assert min(handle["width"], handle["height"]) >= 32, handle
+        for preset in ("pendulum", "soft"):
+            box = page.locator(f".preset-{preset} button").bounding_box()
+            assert box["height"] >= 44, (preset, box)
+        assert page.locator(".sidebar").bounding_box()["y"] < ordered[0][1], \
+            "the controls are not above the plots"
+        width = page.evaluate("() => document.scrollingElement.scrollWidth")
+        assert width <= PHONE["width"], f"with the controls open: {width} px wide"
+    finally:
+        context.close()
+
+
+# ---------------------------------------------------------------------------- screenshots
+
+def _shots_dir() -> Path:
+    folder = os.environ.get("MICROPILLAR_SCREENSHOTS")
+    path = Path(folder) if folder else Path(tempfile.mkdtemp(prefix="micropillar-shots-"))
+    path.mkdir(parents=True, exist_ok=True)
+    return path
+
+
+@pytest.mark.timeout(600)
+@pytest.mark.parametrize("size", ["1280x720", "1920x1080", "390x844"])
+def test_screenshots_of_every_tab(browser, app_url, size):
+    """PNGs of each tab, normal and projector, for a person to look at."""
+    folder = _shots_dir()
+    width, height = map(int, size.split("x"))
+    saved = []
+    for projector in (False, True):
+        context, page = _new_page(browser, {"width": width, "height": height})
+        try:
+            _open(page, f"{app_url}{'?projector=1' if projector else ''}")
+            for tab, (label, names) in [*TABS.items(), ("equations", ("Equations", ()))]:
+                pt.open_tab(page, label)
+                page.mouse.move(width / 2, height - 2)  # no tooltip over the tab bar
+                for name in names:
+                    pt.wait_for_plot(page, name)
+                pt.settle(page)
+                page.wait_for_timeout(500)
+                mode = "projector" if projector else "normal"
+                saved.append(pt.screenshot(page, folder / f"{tab}_{mode}_{size}.png",
+                                           full_page=False))
+        finally:
+            context.close()
+    print(f"{len(saved)} screenshots in {folder}")
+    assert len(saved) == 10 and all(p.stat().st_size > 10_000 for p in saved)

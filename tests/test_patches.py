@@ -1,0 +1,114 @@
+"""``app.patches.release``: a served session's held changes leave as one PATCH-DOC."""
+import asyncio
+import weakref
+
+from bokeh.document import Document
+from bokeh.models import ColumnDataSource, Range1d
+from bokeh.protocol import Protocol
+from bokeh.server.connection import ServerConnection
+from bokeh.server.contexts import BokehSessionContext
+from bokeh.server.session import ServerSession
+
+from app.patches import release
+
+
+class Socket:
+    def __init__(self):
+        self.messages = []
+
+    async def _written(self):
+        return None
+
+    def send_message(self, message):
+        self.messages.append(message)
+        return self._written()
+
+
+class Connection:
+    """A server connection (``bokeh.server.connection.ServerConnection``'s two members
+    that sending uses) whose websocket records the messages."""
+
+    def __init__(self):
+        self.protocol, self._socket = Protocol(), Socket()
+
+    send_patch_document = ServerConnection.send_patch_document
+
+
+def served_document():
+    """A document with three models behind a server session with one connection."""
+    doc = Document()
+    source, x, y = ColumnDataSource(data={"a": [1, 2]}), Range1d(0, 1), Range1d(0, 1)
+    for model in (source, x, y):
+        doc.add_root(model)
+    session = ServerSession("s", doc)
+    context = BokehSessionContext("s", None, doc)
+    context._set_session(session)
+    doc._session_context = weakref.ref(context)
+    connection = Connection()
+    session.subscribe(connection)
+    return doc, session, connection, context, (source, x, y)
+
+
+def changed(message) -> list:
+    return sorted((e["kind"], e.get("attr", "")) for e in message.content["events"])
+
+
+def test_held_changes_leave_in_one_message_per_connection():
+    doc, session, connection, _context, (source, x, y) = served_document()
+
+    def update():
+        doc.hold("combine")
+        source.data = {"a": [3, 4, 5]}
+        x.start, x.end, y.start = -1.0, 2.0, -3.0
+        x.start = -2.0  # combined with the first change of x.start
+        assert release(doc) == 1
+    asyncio.run(session.with_document_locked(update))
+    [message] = connection._socket.messages
+    assert message.header["msgtype"] == "PATCH-DOC"
+    assert changed(message) == [("ColumnDataChanged", "data"), ("ModelChanged", "end"),
+                                ("ModelChanged", "start"), ("ModelChanged", "start")]
+    # ... and it reproduces the server's document in a replica of its former state
+    replica = Document.from_json(doc.to_json())
+    replica.get_model_by_id(x.id).start = 0.0
+    message.apply_to_document(replica)
+    assert replica.get_model_by_id(x.id).start == -2.0
+    assert list(replica.get_model_by_id(source.id).data["a"]) == [3, 4, 5]
+    assert doc.callbacks.hold_value is None
+
+
+def test_python_callbacks_of_the_changed_properties_still_run():
+    doc, session, _connection, _context, (_source, x, _y) = served_document()
+    seen = []
+    x.on_change("start", lambda attr, old, new: seen.append((old, new)))
+
+    def update():
+        doc.hold("combine")
+        x.start = 5.0
+        release(doc)
+    asyncio.run(session.with_document_locked(update))
+    assert seen == [(0, 5.0)]
+
+
+def test_without_a_server_session_it_is_unhold():
+    doc = Document()
+    x = Range1d(0, 1)
+    doc.add_root(x)
+    events = []
+    doc.on_change(events.append)
+    doc.hold("combine")
+    x.start, x.end = 1.0, 2.0
+    assert release(doc) == 0
+    assert len(events) == 2 and doc.callbacks.hold_value is None
+
+
+def test_another_listener_on_the_document_gets_every_change_as_before():
+    doc, session, connection, _context, (_source, x, _y) = served_document()
+    events = []
+    doc.on_change(events.append)
+
+    def update():
+        doc.hold("combine")
+        x.start, x.end = 1.0, 2.0
+        assert release(doc) == 0  # not batched: unhold() as before
+    asyncio.run(session.with_document_locked(update))
+    assert len(events) == 2 and len(connection._socket.messages) == 2
