@@ -113,6 +113,15 @@ def freeze_scene_ranges(scene, series, params, padding: float = 0.15) -> None:
     scene.y_range = Range1d(cy - half, cy + half)
 
 
+# The page's icon travels inside it: without one, a browser asks for ``favicon.ico`` next to
+# the saved file and logs a failed load.
+ICON = ("<link rel=\"icon\" href=\"data:image/svg+xml,"
+        "%3Csvg xmlns='http://www.w3.org/2000/svg' viewBox='0 0 16 16'%3E"
+        "%3Crect x='1' y='2' width='14' height='3' fill='%23555'/%3E"
+        "%3Crect x='6' y='5' width='4' height='9' fill='%231f77b4'/%3E%3C/svg%3E\">")
+
+
 def page_html(doc, title: str | None = None) -> str:
-    """Self-contained HTML (Bokeh's JavaScript inline: works offline)."""
-    return file_html(doc, INLINE, title or doc.title)
+    """Self-contained HTML (Bokeh's JavaScript inline, an inline icon: works offline)."""
+    html = file_html(doc, INLINE, title or doc.title)
+    return html.replace("<head>", "<head>\n    " + ICON, 1)

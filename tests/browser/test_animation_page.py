@@ -33,7 +33,12 @@ def open_page(browser):
         context = browser.new_context(viewport={"width": size[0], "height": size[1]})
         page = context.new_page()
         page.on("pageerror", lambda e: errors.append(str(e)))
-        page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
+        # A console error names its source: a failed load says which file it missed.
+        page.on("console", lambda m: errors.append(f"{m.text} ({m.location.get('url')})")
+                if m.type == "error" else None)
+        # Self-contained: the page asks for nothing but itself and inline data.
+        page.on("request", lambda r: None if r.url == url or r.url.startswith("data:")
+                else errors.append(f"requested {r.url[:200]}"))
         page.goto(url)
         page.wait_for_function("() => window.Bokeh && Bokeh.documents.length > 0 "
                                "&& window.__mpf_players && Object.keys(window.__mpf_players).length")
