@@ -17,12 +17,13 @@ All distributions are frozen and hashable, so they serve as cache keys.
 """
 from __future__ import annotations
 
-import csv
 import math
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.special import i0e
+
+from .histogram_csv import parse_histogram
 
 __all__ = ["Distribution", "Fixed", "Uniform", "Pair", "VonMises", "Mixture", "Histogram",
            "Rotated", "rotated", "from_dict", "FAMILIES", "KAPPA_MAX"]
@@ -269,50 +270,22 @@ class Histogram(Distribution):
 
     @classmethod
     def from_csv(cls, path) -> "Histogram":
-        """Read a histogram from CSV with a header row.
-
-        Columns ``lower_deg,upper_deg,weight`` (bin edges in degrees), or
-        ``theta0_deg,weight`` (equally spaced bin centres; each bin as wide as the spacing).
-        """
+        """Read a histogram from a CSV file (``model.histogram_csv``): a header row, then
+        ``lower_deg,upper_deg,weight`` (bin edges in degrees) or ``theta0_deg,weight``
+        (equally spaced bin centres; each bin as wide as the spacing)."""
         try:
             with open(path, newline="", encoding="utf-8") as src:
-                rows = [r for r in csv.reader(src) if r and not r[0].lstrip().startswith("#")]
+                text = src.read()
         except (OSError, UnicodeDecodeError) as error:
             raise ValueError(f"histogram file {str(path)!r} cannot be read: {error}") from None
-        if len(rows) < 2:
-            raise ValueError(f"histogram file {str(path)!r} is empty: it needs a header row "
-                             f"(theta0_deg,weight or lower_deg,upper_deg,weight) and one row "
-                             f"per bin")
-        header = [h.strip() for h in rows[0]]
-        body = rows[1:]
-        try:
-            table = np.array([[float(x) for x in r] for r in body], dtype=float)
-        except ValueError as error:
-            raise ValueError(f"histogram file {str(path)!r} has a non-numeric value ({error}); "
-                             f"every row after the header must hold numbers") from None
-        if table.ndim != 2 or table.shape[1] != len(header):
-            raise ValueError(f"histogram file {str(path)!r}: every row must have "
-                             f"{len(header)} columns like its header {header}")
-        if header == ["lower_deg", "upper_deg", "weight"]:
-            lo, hi, w = table.T
-            if not np.allclose(lo[1:], hi[:-1]):
-                raise ValueError(f"histogram file {str(path)!r}: bins must be contiguous "
-                                 f"(each lower_deg equal to the previous upper_deg)")
-            edges = np.radians(np.append(lo, hi[-1]))
-        elif header == ["theta0_deg", "weight"]:
-            centres, w = table.T
-            if centres.size == 1:
-                edges = np.radians([centres[0] - 180.0, centres[0] + 180.0])
-            else:
-                step = np.diff(centres)
-                if not np.allclose(step, step[0], rtol=1e-6, atol=1e-9) or step[0] <= 0:
-                    raise ValueError(f"histogram file {str(path)!r}: theta0_deg must be "
-                                     f"equally spaced and increasing")
-                edges = np.radians(np.append(centres - step[0] / 2, centres[-1] + step[0] / 2))
-        else:
-            raise ValueError(f"histogram file {str(path)!r} has header {header}; expected "
-                             f"theta0_deg,weight or lower_deg,upper_deg,weight")
-        return cls(tuple(edges), tuple(w))
+        return cls.from_text(text, f"histogram file {str(path)!r}")
+
+    @classmethod
+    def from_text(cls, text: str, source: str = "the histogram") -> "Histogram":
+        """A histogram from the text of its CSV file (``from_csv``'s forms); ``ValueError``
+        naming ``source``, the line and the fix."""
+        edges, weights = parse_histogram(text, source)
+        return cls(tuple(edges), tuple(weights))
 
 
 @dataclass(frozen=True)

@@ -205,6 +205,35 @@ def test_pillar_bad_quantities_name_the_flag(capsys, change, flag):
     assert code == 2 and out == "" and f"error: {flag}:" in err and err.count("\n") == 1
 
 
+def test_pillar_budget_that_runs_out_prints_the_result_and_its_outcome(capsys):
+    """The worked example at 1 cm/s lies beyond the model range (computed scaled, stiff and
+    heavily loaded: minutes of contacts); half a second ends it with a named outcome, finite
+    results and exit code 1, as any run that did not succeed."""
+    code, out, err = run(capsys, "pillar", *EXAMPLE, "--evaluate", "--budget", "0.5", "--json")
+    r = strict_json(out)
+    assert (code, err) == (1, "") and r["success"] is False and r["status"] == "scaled"
+    assert r["array"]["outcome"] in ("contacts_cut", "beta_cut", "refinement_cut")
+    assert "time budget of 0.5 s" in r["message"]
+    assert all(math.isfinite(r[k]) for k in ("FTx_over_mu0FN", "FTx_N", "power_W"))
+    code, out, err = run(capsys, "pillar", *EXAMPLE, "--evaluate", "--budget", "0.5")
+    assert code == 1 and "outcome" in out and "time budget of 0.5 s" in out
+
+
+@pytest.mark.parametrize("argv", [["--budget", "1"], ["--evaluate", "--budget", "0"],
+                                  ["--evaluate", "--budget", "-1"],
+                                  ["--evaluate", "--budget", "nan"],
+                                  ["--evaluate", "--budget", "soon"]])
+def test_pillar_bad_budget_is_named_before_any_work(capsys, monkeypatch, argv):
+    import model.design_point as design_point
+
+    def started(*args, **kwargs):
+        pytest.fail("the evaluation started although --budget was refused")
+
+    monkeypatch.setattr(design_point, "evaluate", started)
+    code, out, err = run(capsys, "pillar", *EXAMPLE, *argv)
+    assert code == 2 and out == "" and "error: --budget:" in err and err.count("\n") == 1
+
+
 # --------------------------------------------------------------------------- fuzzed
 
 from hypothesis import HealthCheck, given, settings  # noqa: E402
@@ -217,7 +246,7 @@ DESIGN_FLAGS = ["--k-r", "--k-theta", "--F-N", "--beta", "--objective", "--famil
                 "--max-abs-FTy", "--max-FTx", "--tol", "--n-scan", "--max-evaluations",
                 "--regime", "--json", "--bogus"]
 PILLAR_FLAGS = list(dict.fromkeys(EXAMPLE[::2])) + ["--prefactors", "--json", "--bogus",
-                                                      "--orientation", "--kappa"]
+                                                      "--orientation", "--kappa", "--budget"]
 
 
 def tokens(flags):

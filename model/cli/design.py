@@ -163,6 +163,10 @@ def add_pillar_command(commands) -> None:
                            help="load factor: 'self' (default) or a number in (0, 1]")
     run_group.add_argument("--tol", type=real, metavar="T",
                            help="quadrature tolerance (default 1e-3)")
+    run_group.add_argument("--budget", type=real, metavar="S",
+                           help="time budget of the evaluation in seconds (default none); "
+                                "running out prints the result with success false, its "
+                                "outcome and remedy, and exits with 1")
     orientations.add_arguments(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=run_pillar)
@@ -195,6 +199,10 @@ def run_pillar(args) -> int:
     from ..design_point import evaluate, model_point, regime_intervals
     from . import orientations
 
+    if args.budget is not None and not args.evaluate:
+        raise UsageError("--budget", "only with --evaluate (the point itself costs no time)")
+    if args.budget is not None and not (math.isfinite(args.budget) and args.budget > 0):
+        raise UsageError("--budget", f"{args.budget!r} must be a finite number of seconds > 0")
     design = _pillar_design(args)
     record = {"design": design.to_dict(), "point": design.dimensionless(),
               "regime": design.regime(), "intervals": regime_intervals(design)}
@@ -215,12 +223,13 @@ def run_pillar(args) -> int:
                 if args.orientation == "fixed" else None
         try:
             result = evaluate(design, dist, beta=args.beta,
-                              tol=1e-3 if args.tol is None else args.tol)
+                              tol=1e-3 if args.tol is None else args.tol, budget=args.budget)
         except ValueError as error:
             # The dimensionless numbers the model checks, named by the input that sets them.
             match = re.match(r"(\w+)=", str(error))
             flag = {"zeta": "--V-s", "L0": "--L-x", "mu_s": "--mu-s", "A": "--A", "B": "--B",
-                    "beta": "--beta", "tol": "--tol"}.get(match.group(1) if match else None)
+                    "beta": "--beta", "tol": "--tol",
+                    "budget": "--budget"}.get(match.group(1) if match else None)
             raise UsageError(flag, str(error)) from None
         record = result.to_dict()
         code = 0 if result.success else 1
@@ -243,6 +252,7 @@ def _pillar_summary(r: dict) -> str:
     if "FTx_N" in r:
         sections.append(("Array in physical units", [
             ("success", r["success"], r["message"]),
+            ("outcome", r["array"]["outcome"], "ok, or what ran out"),
             ("FTx_over_mu0FN", r["FTx_over_mu0FN"], "apparent friction"),
             ("FTx_N", r["FTx_N"], "drive force [N]"), ("FTy_N", r["FTy_N"], "sideways [N]"),
             ("power_W", r["power_W"], "F_T,x V0 [W]"),
