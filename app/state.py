@@ -40,7 +40,7 @@ URL_KEYS = tuple(DEFAULTS)
 DESIGN_KEYS = tuple(DESIGN_INPUTS)
 #: Parameters of the Design tab's orientation distribution.
 DIST_KEYS = ("dist_family", "dist_deg", "dist_kappa", "dist_psi", "mix_weight", "dist2_family",
-             "dist2_deg", "dist2_kappa")
+             "dist2_deg", "dist2_kappa", "dist_hist")
 #: Parameters of what "Optimise" seeks on the Design tab.
 OPTIMUM_KEYS = ("opt_objective", "opt_bound")
 #: Parameters of how the page is shown, not of the physics: Reset keeps them.
@@ -59,8 +59,11 @@ def clamp(value: float, bounds: tuple[float, float]) -> float:
     return min(max(float(value), bounds[0]), bounds[1])
 
 
-def _component(family: str, deg: float, kappa: float) -> dict:
-    """One component of the editor as ``model.distributions.from_dict`` reads it."""
+def _component(family: str, deg: float, kappa: float, hist: dict | None = None) -> dict:
+    """One component of the editor as ``model.distributions.from_dict`` reads it (the
+    histogram family without an uploaded histogram is uniform)."""
+    if family == "histogram" and hist:
+        return {"family": "histogram", **hist}
     if family in ("fixed", "pair"):
         return {"family": family, "theta0_deg": float(deg)}
     if family == "vonmises":
@@ -71,6 +74,8 @@ def _component(family: str, deg: float, kappa: float) -> dict:
 def _editor_values(d: dict, which: str) -> dict:
     """State values of component ``which`` ("" or "2") from a ``to_dict`` form."""
     values = {f"dist{which}_family": d["family"]}
+    if d["family"] == "histogram":
+        values["dist_hist"] = {"edges_deg": list(d["edges_deg"]), "weights": list(d["weights"])}
     angle = d.get("theta0_deg", d.get("mean_deg"))
     if angle is not None:
         values[f"dist{which}_deg"] = float(angle) % 360.0
@@ -137,6 +142,9 @@ class ExplorerState(param.Parameterized):
                              doc="Design tab: the second component's theta0 or mean, degrees")
     dist2_kappa = param.Number(DEFAULTS["dist2_kappa"], bounds=KAPPA_BOUNDS,
                                doc="Design tab: the second component's concentration kappa")
+    dist_hist = param.Dict(None, allow_None=True, doc=(
+        "Design tab: the uploaded orientation histogram {'edges_deg': [...], 'weights': "
+        "[...]} (app.histogram), used by the 'histogram' family; None: none uploaded"))
     opt_objective = param.Selector(default=DEFAULTS["opt_objective"], objects=list(OBJECTIVES),
                                    doc="Design tab: Optimise seeks the least F_T,x (min-FTx) "
                                        "or the largest |F_T,y| (max-FTy)")
@@ -160,11 +168,11 @@ class ExplorerState(param.Parameterized):
         """The Design tab's orientation distribution, as ``model.distributions.from_dict``
         reads it (angles in degrees; psi is separate): one component, or with
         ``mix_weight`` > 0 the mixture of two weighted components."""
-        first = _component(self.dist_family, self.dist_deg, self.dist_kappa)
+        first = _component(self.dist_family, self.dist_deg, self.dist_kappa, self.dist_hist)
         w = float(self.mix_weight)
         if w <= 0.0:
             return first
-        second = _component(self.dist2_family, self.dist2_deg, self.dist2_kappa)
+        second = _component(self.dist2_family, self.dist2_deg, self.dist2_kappa, self.dist_hist)
         if w >= 1.0:
             return second
         return {"family": "mixture", "components": [first, second], "weights": [1.0 - w, w]}

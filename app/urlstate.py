@@ -26,7 +26,8 @@ URL keys (values in the units of the controls):
 ``projector``  ``1`` for projector mode
 ``d_<input>``  Design tab: a pillar-array input with its unit (``d_D=5 um``, ``d_V0=1 m/s``;
                see ``DESIGN_INPUTS``); ``d_G`` empty means G from Poisson's ratio ``d_nu``
-``dist``       Design tab: ``fixed``, ``pair``, ``vonmises`` or ``uniform`` orientations
+``dist``       Design tab: ``fixed``, ``pair``, ``vonmises``, ``uniform`` or ``histogram``
+``hist``       Design tab: an uploaded histogram of <= 40 equal bins (``app.histogram``)
 ``dist_deg``   Design tab: theta0 (fixed, pair) or the mean (von Mises) in degrees, [0, 360)
 ``kappa``      Design tab: the von Mises concentration, in [0, 1e4]
 ``psi_deg``    Design tab: the sliding direction psi to the array in degrees, [-180, 180]
@@ -51,6 +52,8 @@ from model.controls import CONTROLS, OBJECTIVES
 from model.quantities import AVERAGES as _AVERAGES, MAP_FIGURES
 from model.units import PillarDesign, quantity
 
+from .histogram import LINK_MAX_BINS, from_link, link_text
+
 # The ranges and defaults are the model's (model/controls.py); only the page's own
 # choices (tabs, projector mode) are defined here.
 K_BOUNDS = CONTROLS["k_r"].bounds
@@ -65,10 +68,9 @@ ORIENTATIONS = ("uniform", "fixed")
 AVERAGES = tuple(_AVERAGES)
 MAP_QUANTITIES = tuple(MAP_FIGURES)
 
-#: Longest URL value read, in characters. Every value the page writes has a few characters;
-#: a longer one is refused unread: Python refuses to convert more than 4300 digits to an
-#: int (Panel's parser would fail on ``?x=`` + 4301 digits), and no request may make the
-#: server convert megabyte-long numbers.
+#: Longest URL value read, in characters (the page writes at most a histogram's 100); a
+#: longer one is refused unread: Python converts at most 4300 digits to an int (Panel's
+#: parser fails on ``?x=`` + 4301 digits), and no request may make the server convert more.
 MAX_VALUE_CHARS = 100
 
 #: The default view: the pendulum support of Fig. 7a (theta0 = 90 deg, F_N = 1).
@@ -86,11 +88,10 @@ PINNED_KEYS = ("k_r", "k_theta", "F_N", "theta0", "rtol", "beta_mode", "beta")
 PINNED_URL_KEYS = ("k_r", "k_theta", "F_N", "theta0_deg", "rtol", "beta")
 
 # ---------------------------------------------------------------- Design tab
-#: The default pillars: the LDPE example of the notes (``PillarDesign.example``), sliding at
-#: V0 = 1 m/s instead of the notes' 1 cm/s. At 1 cm/s k~ ~ 5e6 lies beyond the model range,
-#: is computed scaled to 1e6, and its array costs minutes of a worker; at 1 m/s the same
-#: pillars sit at k~_r ~ 550, k~_theta ~ 4900 (outside the paper's map, stiff regime) and
-#: compute in seconds. The speed line on the map shows both.
+#: The default pillars: the LDPE example of the notes (``PillarDesign.example``) at V0 = 1
+#: m/s, not 1 cm/s, where k~ ~ 5e6 lies beyond the model range, is computed scaled to 1e6
+#: and its array costs minutes; at 1 m/s k~_r ~ 550, k~_theta ~ 4900 (outside the paper's
+#: map, stiff) compute in seconds. The speed line on the map shows both.
 _EXAMPLE = PillarDesign.example(V0="1 m/s").to_dict()
 #: The display unit of each velocity input (the example's cm/s reads badly at 1 m/s).
 _SHOWN_UNIT = {"V0": "m/s"}
@@ -106,8 +107,7 @@ def _example_text(field: str) -> str:
 
 
 #: Design inputs: state parameter -> (URL key, ``PillarDesign`` field, label, what it is).
-#: The text of
-#: each is a quantity with its unit, parsed by ``model.units`` (pint).
+#: The text of each is a quantity with its unit, parsed by ``model.units`` (pint).
 DESIGN_INPUTS = {
     "design_D": ("d_D", "D", "D", "pillar diameter D"),
     "design_h": ("d_h", "h", "h", "pillar height h"),
@@ -126,14 +126,14 @@ DESIGN_INPUTS = {
 }
 DESIGN_DEFAULTS = {name: _example_text(v[1]) for name, v in DESIGN_INPUTS.items()}
 #: Orientation distributions the Design tab edits (``model.distributions.FAMILIES``' names).
-DIST_FAMILIES = ("fixed", "pair", "vonmises", "uniform")
+DIST_FAMILIES = ("fixed", "pair", "vonmises", "uniform", "histogram")
 KAPPA_BOUNDS = (0.0, 1e4)
 PSI_BOUNDS = (-180.0, 180.0)
 MIX_BOUNDS = CONTROLS["mix_weight"].bounds
 BOUND_BOUNDS = CONTROLS["bound"].bounds
 DEFAULTS.update(DESIGN_DEFAULTS, dist_family="vonmises", dist_deg=90.0, dist_kappa=4.0,
                 dist_psi=0.0, mix_weight=CONTROLS["mix_weight"].default,
-                dist2_family="fixed", dist2_deg=0.0, dist2_kappa=4.0,
+                dist2_family="fixed", dist2_deg=0.0, dist2_kappa=4.0, dist_hist=None,
                 opt_objective=CONTROLS["objective"].default, opt_bound=CONTROLS["bound"].default)
 #: The Design tab's numeric distribution and optimisation controls: URL key -> parameter.
 _DESIGN_NUMBERS = (("dist_deg", "dist_deg"), ("kappa", "dist_kappa"), ("psi_deg", "dist_psi"),
@@ -198,6 +198,7 @@ _READERS = {
     "kappa2": ("dist2_kappa", _in(*KAPPA_BOUNDS), f"a number in {list(KAPPA_BOUNDS)}"),
     "objective": ("opt_objective", _choice(OBJECTIVES), " or ".join(map(repr, OBJECTIVES))),
     "bound": ("opt_bound", _in(*BOUND_BOUNDS), CONTROLS["bound"].expected()),
+    "hist": ("dist_hist", from_link, f"first edge:bin width:weights, <= {LINK_MAX_BINS} bins"),
 }
 
 
@@ -258,6 +259,8 @@ def serialize(values: Mapping) -> dict[str, str]:
             out[key] = _fmt(design[name])
     if design["opt_bound"] is not None:
         out["bound"] = _fmt(design["opt_bound"])
+    if link_text(design["dist_hist"]):
+        out["hist"] = link_text(design["dist_hist"])
     if values.get("pinned"):
         out["A"] = pinned_text(values["pinned"])
     return out
@@ -356,15 +359,13 @@ def parse(query: Mapping | str) -> tuple[dict, list[str]]:
     return values, notices
 
 
-#: Characters of Markdown/HTML markup and of links ("." and ":" stop the page from
-#: turning a domain into a link); escaped where URL text is echoed in a notice.
+#: Markdown/HTML and link characters ("." and ":" stop autolinks), escaped in notices.
 _MARKUP = re.compile(r"([\\`*_{}\[\]()#!|<>&~\".:])")
 
 
 def _shown(text: str) -> str:
-    """``text`` from the URL as it is echoed in a notice: quoted, at most 40 characters,
-    and with its markup characters backslash-escaped, so the page (which renders notices
-    as Markdown) shows it literally instead of as HTML, links or formatting."""
+    """``text`` from the URL as echoed in a notice (Markdown): quoted, at most 40 characters,
+    its markup characters backslash-escaped so it shows literally, never as HTML or links."""
     shown = repr(text if len(text) <= 40 else text[:37] + "...")
     return _MARKUP.sub(r"\\\1", shown)
 
@@ -381,10 +382,9 @@ def _notice(key: str, text: str, expected: str) -> str:
 
 def panel_query(parse_query):
     """``parse_query`` (Panel's reader of ``?a=1&b=x``, ``panel.util.parse_query``) made safe
-    for any address: values longer than ``MAX_VALUE_CHARS``, and values Panel's own reader
-    raises on (``int()`` of 4301 digits, or of a digit ``str.isdigit`` accepts but ``int``
-    does not, such as ``\u00b2``), are left out, as ``parse`` leaves them out of the state.
-    Unguarded, one such value stops the page's address from syncing with the server."""
+    for any address: values longer than ``MAX_VALUE_CHARS``, and values Panel's reader raises
+    on (``int()`` of 4301 digits, or of ``\u00b2``, a digit to ``str.isdigit`` only), are left
+    out, as ``parse`` leaves them out; unguarded, one stops the address syncing."""
     def guarded(query: str) -> dict:
         values = {}
         for key, value in parse_qsl(query[1:]):

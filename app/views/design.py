@@ -23,10 +23,11 @@ from ..figures.polar import set_extent
 from ..results import SessionResults, optimum_family
 from ..state import ExplorerState
 from ..urlstate import DESIGN_INPUTS
+from .design_upload import HistogramUpload
 from .widgets import caption, look
 
 FAMILY_LABELS = {"von Mises": "vonmises", "pair ±θ₀": "pair", "fixed θ₀": "fixed",
-                 "uniform": "uniform"}
+                 "uniform": "uniform", "histogram (CSV)": "histogram"}
 OBJECTIVE_LABELS = {"least F_T,x": "min-FTx", "largest |F_T,y|": "max-FTy"}
 #: What the bound of each objective limits (a force over μ₀F_N).
 BOUND_OF = {"min-FTx": "|F_T,y|", "max-FTy": "F_T,x"}
@@ -110,6 +111,7 @@ class DesignView(pn.viewable.Viewer):
                                                  width=90, css_classes=["design-optimise"])
         self.cancel_button = pn.widgets.Button(**caption("Cancel"), **look("light"), width=70,
                                                disabled=True, css_classes=["design-cancel"])
+        self.upload = HistogramUpload(state=s)
         self.optimise_button.on_click(lambda _e: self.results.optimise())
         self.cancel_button.on_click(lambda _e: self.results.cancel_optimum())
         self.point_text = pn.pane.Markdown("", width=310, margin=(0, 5),
@@ -180,7 +182,8 @@ class DesignView(pn.viewable.Viewer):
     # ------------------------------------------------------------------ the polar curve
     @param.depends("results.design_polar", "state.dist_family", "state.dist_deg",
                    "state.dist_kappa", "state.dist_psi", "state.mix_weight",
-                   "state.dist2_family", "state.dist2_deg", "state.dist2_kappa", watch=True)
+                   "state.dist2_family", "state.dist2_deg", "state.dist2_kappa",
+                   "state.dist_hist", watch=True)
     def _on_polar(self) -> None:
         s = self.state
         data, axis = design_polar_data(self.results.design_polar, s.distribution, s.dist_psi)
@@ -191,11 +194,11 @@ class DesignView(pn.viewable.Viewer):
             set_extent(self.polar_figure, axis)
         _locked(draw)
         self.kappa.disabled = s.dist_family != "vonmises"
-        self.angle.disabled = s.dist_family == "uniform"
+        self.angle.disabled = s.dist_family in ("uniform", "histogram")
         second = s.mix_weight > 0
         self.family2.disabled = not second
         self.kappa2.disabled = not second or s.dist2_family != "vonmises"
-        self.angle2.disabled = not second or s.dist2_family == "uniform"
+        self.angle2.disabled = not second or s.dist2_family in ("uniform", "histogram")
 
     # ------------------------------------------------------------------ readouts
     @param.depends("results.design_array", "results.busy", "results.errors", watch=True)
@@ -282,7 +285,7 @@ class DesignView(pn.viewable.Viewer):
                                           margin=(0, 5)), grid, self.point_text, width=315)
         right = pn.Column(
             pn.Row(self.family, self.angle, self.kappa, self.psi, margin=0),
-            pn.Row(self.family2, self.angle2, self.kappa2, self.mix, margin=0),
+            pn.Row(self.family2, self.angle2, self.kappa2, self.mix, margin=0), self.upload,
             self.readouts, pn.Row(self.objective, self.bound, margin=0),
             pn.Row(self.optimise_button, self.cancel_button, margin=0),
             self.optimum_text, width=315)
