@@ -1,7 +1,11 @@
 """The Design tab of the served dashboard: the pillar array's dimensionless point is
 computed and marked on the regime map, and it moves along its speed line when the
-sliding speed is typed in."""
+sliding speed is typed in; the distribution editor (family, parameters, a histogram file)
+redraws the density over the Fig. 11a curve and changes the readouts."""
 from __future__ import annotations
+
+import math
+import re
 
 import pytest
 
@@ -101,4 +105,104 @@ def test_a_long_optimisation_shows_progress_and_can_be_cancelled(page, page_log,
         timeout=10_000)
     assert not page.locator(".design-cancel button").first.is_enabled()
     assert page.locator(".design-optimise button").first.is_enabled()
+    assert page_log.errors == [], page_log.errors
+
+
+# --------------------------------------------------------------------------- the editor
+
+def _readout(page) -> float | None:
+    """F_T,x/(mu0 F_N) of the array as the readouts' table shows it (None while computing)."""
+    cells = page.locator(".design-readouts td").all_inner_texts()
+    notes = " ".join(page.locator(".design-readouts p").all_inner_texts())
+    for label, value in zip(cells, cells[1:]):
+        if label.startswith("F_T,x/(μ₀F_N) (Eq. 10)") and "Updating" not in notes:
+            match = re.match(r"\s*([0-9.]+)", value)
+            return float(match.group(1)) if match else None
+    return None
+
+
+def _wait_readout(page, predicate, what: str) -> float:
+    value = {}
+
+    def ready():
+        value["x"] = _readout(page)
+        return value["x"] is not None and predicate(value["x"])
+    pt.wait_for(page, ready, timeout_s=90.0, what=what)
+    return value["x"]
+
+
+def _density_peak(page) -> tuple[float, int]:
+    """(angle in degrees of the density curve's farthest point, number of points)."""
+    d = pt.read_source(page, "design_density")
+    if not d or not d.get("x"):
+        return math.nan, 0
+    r = [math.hypot(x, y) for x, y in zip(d["x"], d["y"])]
+    i = max(range(len(r)), key=r.__getitem__)
+    return math.degrees(math.atan2(d["y"][i], d["x"][i])) % 360.0, len(r)
+
+
+def _set_number(page, css_class: str, text: str) -> None:
+    box = page.locator(f".{css_class} input").first
+    box.fill(text)
+    box.press("Enter")
+
+
+def test_the_distribution_editor_redraws_the_density_and_the_readouts(page, page_log, app_url,
+                                                                      tmp_path):
+    """von Mises at 90 deg (the default) -> mean 30 deg -> the pair +-40 deg -> an uploaded
+    histogram: each redraws the density over the Fig. 11a curve and changes the readouts;
+    a bad file is named and changes nothing."""
+    pt.wait_for_app(page, f"{app_url}?tab=design&d_FN=1%20N&d_V0=100%20m/s&d_Vs=10%20m/s")
+    pt.wait_for(page, lambda: len(pt.read_source(page, "polar_FTx")["x"]) > 10,
+                timeout_s=90.0, what="the Fig. 11a curve of the design's springs")
+    pt.wait_for(page, lambda: abs(_density_peak(page)[0] - 90.0) < 1.0, timeout_s=30.0,
+                what="the von Mises density peaking at its mean, 90 deg")
+    first = _wait_readout(page, lambda x: True, "the readouts of the default distribution")
+
+    _set_number(page, "ctl-dist_deg", "30")
+    pt.wait_for(page, lambda: abs(_density_peak(page)[0] - 30.0) < 1.0, timeout_s=30.0,
+                what="the density following the mean to 30 deg")
+    at_30 = _wait_readout(page, lambda x: x != first, "the readouts of the mean at 30 deg")
+
+    page.locator(".ctl-dist_family select").first.select_option(label="pair ±θ₀")
+    _set_number(page, "ctl-dist_deg", "40")
+    pt.wait_for(page, lambda: _density_peak(page)[1] == 0 and len(
+        pt.read_source(page, "design_atoms")["xs"]) == 2, timeout_s=30.0,
+        what="the pair drawn as two spokes instead of a density")
+    spokes = pt.read_source(page, "design_atoms")
+    angles = sorted(round(math.degrees(math.atan2(ys[1], xs[1]))) for xs, ys in
+                    zip(spokes["xs"], spokes["ys"]))
+    assert angles == [-40, 40]
+    pair = _wait_readout(page, lambda x: x not in (first, at_30), "the pair's readouts")
+    pt.wait_for(page, lambda: "dist=pair" in page.url and "dist_deg=40" in page.url,
+                timeout_s=10.0, what="the pair in the link")
+
+    # A histogram from a file: all supports between 120 and 150 degrees.
+    good = tmp_path / "orientations.csv"
+    good.write_text("lower_deg,upper_deg,weight\n0,120,0\n120,150,1\n150,360,0\n")
+    page.locator(".design-histogram-file input[type=file]").first.set_input_files(str(good))
+    pt.wait_for(page, lambda: 120.0 <= _density_peak(page)[0] <= 150.0, timeout_s=30.0,
+                what="the uploaded histogram's density between 120 and 150 deg")
+    _wait_readout(page, lambda x: x != pair, "the histogram's readouts")
+    note = " ".join(page.locator(".design-histogram p").all_inner_texts())
+    assert "3 bins from 0° to 360°" in note and "Not in the link" in note  # unequal bins
+
+    # Equal bins are in the link.
+    equal = tmp_path / "equal.csv"
+    equal.write_text("theta0_deg,weight\n" + "".join(
+        f"{10 * i + 5},{3 if i == 13 else 1}\n" for i in range(36)))
+    page.locator(".design-histogram-file input[type=file]").first.set_input_files(str(equal))
+    pt.wait_for(page, lambda: 130.0 <= _density_peak(page)[0] <= 140.0, timeout_s=30.0,
+                what="the second histogram's density peaking in its heavy bin")
+    pt.wait_for(page, lambda: "hist=0:10:" in page.url, timeout_s=10.0,
+                what="the histogram in the link")
+    shown = _wait_readout(page, lambda x: True, "the second histogram's readouts")
+
+    bad = tmp_path / "bad.csv"
+    bad.write_text("theta0_deg,weight\n10,1\n20,-3\n")
+    page.locator(".design-histogram-file input[type=file]").first.set_input_files(str(bad))
+    page.locator(".design-histogram p").filter(
+        has_text="negative weight -3 on line 3").first.wait_for(timeout=20_000)
+    assert 130.0 <= _density_peak(page)[0] <= 140.0 and _readout(page) == shown
+    assert "hist=0:10:" in page.url
     assert page_log.errors == [], page_log.errors
