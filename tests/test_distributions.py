@@ -86,6 +86,10 @@ def test_bad_distributions_are_named(make, match):
     ("theta0_deg,weight\n10,abc\n", "non-numeric"), ("angle,weight\n10,1\n", "header"),
     ("theta0_deg,weight\n10,1\n15,1\n40,1\n", "equally spaced"),
     ("theta0_deg,weight\n10,0\n20,0\n", "not all 0"),
+    ("# measured\ntheta0_deg,weight\n10,1\n20,-1\n", "negative weight -1 on line 4"),
+    ("theta0_deg,weight\n10,1\n20,inf\n", "not finite"),
+    ("theta0_deg,weight\n10,1,3\n", "line 2 has 3 columns"),
+    ("lower_deg,upper_deg,weight\n0,200,1\n200,400,1\n", "span at most 360"),
 ])
 def test_bad_histogram_files_are_named_before_any_work(tmp_path, text, match, monkeypatch):
     import model.distribution_array as da
