@@ -65,6 +65,10 @@ class PinnedResults(param.Parameterized):
         """Whether a state is pinned (A shown beside B)."""
         return self.A is not None and self.state.pinned is not None
 
+    def pinned_slot(self, name: str):
+        """A's ``Slot`` of the result ``name`` while something is pinned, else None."""
+        return self.A.slots[name] if self.comparing else None
+
     def _show_pinned(self, names) -> None:
         self._shown = set(names)
         self._need_pinned()
