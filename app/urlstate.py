@@ -256,6 +256,8 @@ def serialize(values: Mapping) -> dict[str, str]:
     for key, name in _DESIGN_NUMBERS:
         if design[name] != DEFAULTS[name]:
             out[key] = _fmt(design[name])
+            if key.endswith("_deg") and key != "psi_deg" and float(out[key]) >= 360.0:
+                out[key] = "0"  # an angle in [0, 360) that rounds to 360, as theta0
     if design["opt_bound"] is not None:
         out["bound"] = _fmt(design["opt_bound"])
     if values.get("pinned"):
