@@ -34,6 +34,8 @@ def _value_source(value) -> str:
     """Python source of a distribution's ``to_dict`` form (dicts, lists, numbers, text)."""
     if isinstance(value, dict):
         return "{" + ", ".join(f"{k!r}: {_value_source(v)}" for k, v in value.items()) + "}"
+    if isinstance(value, (list, tuple)):  # a mixture's components and weights
+        return "[" + ", ".join(_value_source(v) for v in value) + "]"
     return source(value)
 
 

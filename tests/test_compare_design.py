@@ -319,9 +319,11 @@ def test_the_design_snippet_with_a_reproduces_both_arrays():
 
     state = ExplorerState()
     state.load_query(FAST)
+    state.mix_weight = 0.3  # A: a mixture (lists of components in the snippet)
     state.pin()
-    state.param.update(**B_EDIT)
+    state.param.update(**B_EDIT, mix_weight=0.0)
     code = view_as_python(state)
+    assert "'family': 'mixture'" in code
     records, printed = execute(code, names=())
     for tag, s in (("B", state), ("A", ExplorerState(**state.pinned))):
         design = worker.design_of(s.design_inputs)
