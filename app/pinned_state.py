@@ -24,7 +24,7 @@ from urllib.parse import unquote
 from .urlstate import DEFAULTS, DESIGN_INPUTS, MAX_PINNED_CHARS, parse, serialize
 
 __all__ = ["PINNED_KEYS", "PINNED_DESIGN_KEYS", "PINNED_ALL", "PINNED_URL_KEYS",
-           "MAX_PINNED_CHARS", "complete", "pinned_text", "parse_pinned", "design_differs"]
+           "MAX_PINNED_CHARS", "complete", "pinned_text", "parse_pinned"]
 
 #: What a pinned state keeps of the support: every input of the support, the orientation
 #: sweep, the uniform array and the load curve.
@@ -74,11 +74,3 @@ def parse_pinned(text: str) -> dict | None:
     values, notices = parse(query)
     return None if notices else complete(values)
 
-
-def design_differs(pinned: Mapping | None, state) -> bool:
-    """Whether the pinned state's Design tab (inputs or distribution) differs from
-    ``state``'s (an ``ExplorerState``)."""
-    if pinned is None:
-        return False
-    a = complete(pinned)
-    return any(a[name] != getattr(state, name) for name in PINNED_DESIGN_KEYS)
