@@ -93,7 +93,10 @@ def test_clear_and_pin_follow_the_address(page, page_log, app_url):
 
 #: A: the notes' LDPE pillars at 100 m/s with the default von Mises orientations; B: the
 #: same pillars at 80 m/s, in pairs at ±30° (both inside the paper's map: seconds each).
-DESIGN_A = "k_r:3,k_theta:0.01,F_N:1,theta0_deg:90,d_FN:1 N,d_V0:100 m/s,d_Vs:10 m/s"
+#: A's diameter and height are written at length: an A over 100 characters is read too.
+DESIGN_A = ("k_r:3,k_theta:0.01,F_N:1,theta0_deg:90,d_D:5.00000 um,d_h:50.0000 um,d_FN:1 N,"
+            "d_V0:100 m/s,d_Vs:10 m/s")
+assert len(DESIGN_A) > 100
 DESIGN_QUERY = ("?tab=design&d_FN=1%20N&d_V0=80%20m/s&d_Vs=10%20m/s&dist=pair&dist_deg=30"
                 f"&A={quote(DESIGN_A, safe=':,')}")
 
