@@ -4,8 +4,9 @@ Both are written by the model's CSV writer (``model.csvfile``): ``# key: value``
 (parameters, settings, package version, what each column holds), a header row, the data.
 With a pinned state A of a comparison (``app.compare``) the file carries A too: its
 settings as ``# pinned <key>: value`` lines (not ``A``: the friction law has parameters
-A and B) and its values as the same columns with ``_A`` appended, row by row beside B's (the trajectories have the same number of samples, the
-sweeps the same theta0; a shorter column is padded with NaN).
+A and B) and its values as the same columns with ``_A`` appended, row by row beside B's
+(the trajectories have the same number of samples, the sweeps the same theta0; a
+shorter column is padded with NaN).
 """
 from __future__ import annotations
 

@@ -22,7 +22,7 @@ from hypothesis import strategies as st
 
 from app import results as results_module
 from app import slot, worker
-from app.pinned_state import PINNED_ALL, PINNED_DESIGN_KEYS, complete, parse_pinned
+from app.pinned_state import PINNED_ALL, complete, parse_pinned
 from app.state import ExplorerState
 from app.urlstate import (DEFAULTS, DESIGN_INPUTS, DIST_FAMILIES, KAPPA_BOUNDS,
                           MAX_PINNED_CHARS, MIX_BOUNDS, PSI_BOUNDS, parse)

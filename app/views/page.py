@@ -245,13 +245,13 @@ class Dashboard(pn.viewable.Viewer):
         what is computed: never waits. If it is not computed yet, the sweep starts and the
         file says so."""
         r = self.results
-        for slot in (r.slots["polar"], r.pinned_slot("polar")):
-            if slot is not None and not slot.current:
+        slots = [s for s in (r.slots["polar"], r.pinned_slot("polar")) if s is not None]
+        for slot in slots:
+            if not slot.current:
                 slot.request()
-                if not slot.current:
-                    return io.StringIO("# The polar sweep for these settings is being "
-                                       "computed (the Polar tab shows it): download again "
-                                       "in a moment.\n")
+        if not all(slot.current for slot in slots):
+            return io.StringIO("# The polar sweep for these settings is being computed "
+                               "(the Polar tab shows it): download again in a moment.\n")
         return io.StringIO(sweep_csv(r.polar, pinned=r.polar_A, comparing=r.comparing))
 
     def _name_downloads(self, *_events) -> None:
