@@ -1,22 +1,26 @@
 """Compare two states: the pinned state "A" beside the controls, "B".
 
-``ExplorerState.pinned`` holds A (in the URL as ``A=k_r:...,k_theta:...``, see
-``app.urlstate``). ``PinnedResults``, a base of ``SessionResults``, computes A's results
-with the very machinery of B's: a second ``SessionResults`` (made at the first pin) of a
-private state that takes A's values, whose slots are needed only while something is pinned and only for what the
-visible tab shows (``PINNED_RESULTS``). Its request keys are B's, so the shared result
-cache makes A free wherever it equals a state computed before (B at the moment of
-pinning). Views draw ``support_A``, ``polar_A``, ``uniform_A`` and ``load_A`` muted
-under B's; nothing of A is computed or drawn while nothing is pinned.
+``ExplorerState.pinned`` holds A: the support's inputs and the Design tab's (in the URL as
+``A=k_r:...,k_theta:...``, see ``app.pinned_state``). ``PinnedResults``, a base of
+``SessionResults``, computes A's results with the very machinery of B's: a second
+``SessionResults`` (made at the first pin) of a private state that takes A's values, whose
+slots are needed only while something is pinned and only for what the visible tab shows
+(``PINNED_RESULTS``; the Design tab's only while it is on screen). Its request keys are
+B's, so the shared result cache makes A free wherever it equals a state computed before (B
+at the moment of pinning). Views draw ``support_A``, ``polar_A``, ``uniform_A``,
+``load_A`` and ``design_point_A``, ``design_array_A``, ``design_polar_A`` muted under B's;
+nothing of A is computed or drawn while nothing is pinned.
 """
 from __future__ import annotations
 
 import param
 
+from .pinned_state import complete
 from .state import ExplorerState
 
 #: The results computed for A: those the overlays and readouts draw.
-PINNED_RESULTS = ("support", "polar", "uniform", "load")
+PINNED_RESULTS = ("support", "polar", "uniform", "load", "design_point", "design_array",
+                  "design_polar")
 #: How A's errors are told apart from B's on the page.
 PINNED_LABEL = "A (pinned)"
 
@@ -29,6 +33,12 @@ class PinnedResults(param.Parameterized):
     uniform_A = param.Dict(None, allow_None=True, doc="the pinned state's uniform array row")
     load_A = param.Dict(None, allow_None=True, doc=(
         "the pinned state's Fig. 6 curve, {F_N: uniform-array row}"))
+    design_point_A = param.Dict(None, allow_None=True, doc=(
+        "the pinned state's design point on the map (Design tab)"))
+    design_array_A = param.Dict(None, allow_None=True, doc=(
+        "the pinned state's design array for its distribution (Design tab)"))
+    design_polar_A = param.Parameter(None, doc=(
+        "the pinned state's Fig. 11a sweep at its design's springs (Design tab)"))
 
     def _init_pinned(self, side: str) -> None:
         """Set up the A side (``side`` "B": this is a page's results; "A": this is it).
@@ -42,7 +52,7 @@ class PinnedResults(param.Parameterized):
             self._make_pinned()
 
     def _make_pinned(self) -> None:
-        self.A = type(self)(ExplorerState(**self.state.pinned), side="A")
+        self.A = type(self)(ExplorerState(**complete(self.state.pinned)), side="A")
         # One session for the pool's turns and budgets: A is part of this page.
         self.A.session_id, self.A.client = self.session_id, self.client
         self.A.started = self.started
@@ -54,6 +64,10 @@ class PinnedResults(param.Parameterized):
     def comparing(self) -> bool:
         """Whether a state is pinned (A shown beside B)."""
         return self.A is not None and self.state.pinned is not None
+
+    def pinned_slot(self, name: str):
+        """A's ``Slot`` of the result ``name`` while something is pinned, else None."""
+        return self.A.slots[name] if self.comparing else None
 
     def _show_pinned(self, names) -> None:
         self._shown = set(names)
@@ -73,13 +87,13 @@ class PinnedResults(param.Parameterized):
     def _on_pinned(self, event) -> None:
         if event.new is None:
             self._need_pinned()  # cancels A's work: late results are ignored
-            self.param.update(support_A=None, polar_A=None, uniform_A=None, load_A=None)
+            self.param.update(**{f"{name}_A": None for name in PINNED_RESULTS})
             self._from_pinned_errors({})
             return
         if self.A is None:
             self._make_pinned()
         else:
-            self.A.state.param.update(**event.new)
+            self.A.state.param.update(**complete(event.new))
         self._need_pinned()
 
     def _from_pinned(self, event) -> None:

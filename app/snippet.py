@@ -4,17 +4,23 @@ dashboard shows for an ``ExplorerState``.
 The snippet makes the calls the server's workers make (``app.worker``): the
 fixed-orientation array at theta0 and the contact of its support, integrated with the
 array's load factor (Support tab, Fig. 7), and the uniform-orientation array behind the
-readouts (Figs. 5, 6, 8). Settings the page fixes (samples, step budget, quadrature
-tolerance) are taken from ``app.worker``, so the snippet follows them.
+readouts (Figs. 5, 6, 8); on the Design tab also the design's array for its orientation
+distribution, in physical units (``model.design_point.evaluate``). Settings the page fixes
+(samples, step budget, quadrature tolerances) are taken from ``app.worker``, so the snippet
+follows them. With a pinned state A of a comparison (``app.compare``) the snippet computes
+A's numbers as well (its variables end in ``_A``) and prints B − A.
 """
 from __future__ import annotations
 
 import math
+import textwrap
 
 from model import __version__
 from model.cli.snippet import params_source, source
 
 from . import worker
+from .pinned_state import complete
+from .state import ExplorerState
 
 __all__ = ["view_as_python"]
 
@@ -24,9 +30,18 @@ AVERAGE_ATTRIBUTES = {"paper": ("FTx_over_mu0FN", "paper average over supports, 
                                    "duration-weighted average over supports")}
 
 
-def view_as_python(state) -> str:
-    """The snippet for ``state`` (an ``app.state.ExplorerState``): runs on its own in a
-    fresh interpreter and prints the readouts' numbers."""
+def _value_source(value) -> str:
+    """Python source of a distribution's ``to_dict`` form (dicts, lists, numbers, text)."""
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{k!r}: {_value_source(v)}" for k, v in value.items()) + "}"
+    if isinstance(value, (list, tuple)):  # a mixture's components and weights
+        return "[" + ", ".join(_value_source(v) for v in value) + "]"
+    return source(value)
+
+
+def _support_block(state, tag: str, who: str) -> str:
+    """The support's and uniform array's lines of ``state``; variables end in ``tag``,
+    printed lines start with ``who``."""
     p = state.params
     beta = state.array_beta
     attribute, meaning = AVERAGE_ATTRIBUTES[state.average]
@@ -34,29 +49,83 @@ def view_as_python(state) -> str:
     params = params_source(p, theta0=f"math.radians({source(float(state.theta0))})")
     # A uniform array covers every theta0 and takes its load factor as an argument.
     springs = params_source(p.replace(theta0=math.pi / 2, beta=1.0))
+    t, w = tag, who
+    return f'''\
+params{t} = {params}
+
+# Support tab: the fixed-orientation array at theta0 (Figs. 9-11) and the contact of its
+# support, integrated with the array's load factor beta (Eqs. 5-9, Fig. 7)
+fixed{t} = fixed_orientation(params{t}, beta={source(beta)}, rtol={source(state.rtol)})
+support{t} = simulate_support(params{t}.replace(beta=fixed{t}.beta), rtol={source(state.rtol)},
+                           samples={worker.SAMPLES}, max_steps={worker.MAX_STEPS})
+print(f"{w}fixed array: F_T,x/(mu0 F_N) = {{fixed{t}.FTx_over_mu0FN!r}}, "
+      f"D_y/D_x = {{fixed{t}.Dy_over_Dx!r}}, beta = {{fixed{t}.beta!r}}")
+print(f"{w}support: t_out = {{support{t}.t_out!r}}, W = {{support{t}.W!r}}, "
+      f"D_x = {{support{t}.D_x!r}}, D_y = {{support{t}.D_y!r}}")
+
+# Readouts: the uniform-orientation array, theta0 uniform on [0, 2 pi) (Figs. 5, 6, 8)
+springs{t} = {springs}
+uniform{t} = uniform_array(springs{t}, beta={source(beta)}, tol={source(worker.UNIFORM_TOL)})
+print(f"{w}uniform array: F_T,x/(mu0 F_N) = {{float(uniform{t}.{attribute})!r}}"
+      f" ({meaning})")
+print(f"{w}uniform array: D_y/D_x = {{float(uniform{t}.Dy_over_Dx)!r}}, "
+      f"N_c/N_c0 = {{float(uniform{t}.Nc_over_Nc0)!r}}")
+'''
+
+
+def _design_block(state, tag: str, who: str) -> str:
+    """The Design tab's array of ``state`` (as ``worker.compute_design_array``)."""
+    inputs = textwrap.fill(", ".join(f"{k}={v!r}" for k, v in state.design_inputs.items()),
+                           width=88, initial_indent="    ", subsequent_indent="    ",
+                           break_long_words=False, break_on_hyphens=False)
+    t, w = tag, who
+    return f'''
+# Design tab: the pillars in physical units, and their array for the orientation
+# distribution seen at the sliding direction psi (Eq. 5 in physical units, Fig. 11a)
+design{t} = PillarDesign(
+{inputs})
+orientations{t} = from_dict({_value_source(state.distribution)})
+array{t} = evaluate(design{t}, orientations{t},
+    psi=math.radians({source(float(state.dist_psi))}), beta={source(state.array_beta)},
+    tol={source(worker.DESIGN_TOL)}, budget={source(worker.DESIGN_REFINE_S)})
+print(f"{w}design array: F_T,x/(mu0 F_N) = {{float(array{t}.array.FTx_over_mu0FN)!r}}, "
+      f"F_T,y/(mu0 F_N) = {{float(array{t}.array.FTy_over_mu0FN)!r}}, "
+      f"F_T,x = {{float(array{t}.FTx_N)!r}} N")
+'''
+
+
+def view_as_python(state) -> str:
+    """The snippet for ``state`` (an ``app.state.ExplorerState``): runs on its own in a
+    fresh interpreter and prints the readouts' numbers (and a pinned state's, and B − A)."""
+    design = state.tab == "design"
+    pinned = state.pinned
+    who = "B " if pinned is not None else ""
+    imports = "from model import Params, fixed_orientation, simulate_support, uniform_array"
+    if design:
+        imports += ("\nfrom model.design_point import evaluate\n"
+                    "from model.distributions import from_dict\n"
+                    "from model.units import PillarDesign")
+    body = _support_block(state, "", who) + (_design_block(state, "", who) if design else "")
+    if pinned is not None:
+        a = ExplorerState(**complete(pinned), average=state.average)
+        attribute = AVERAGE_ATTRIBUTES[state.average][0]
+        body += ("\n# The pinned state A of the comparison: the same calls with its values\n"
+                 + _support_block(a, "_A", "A ") + (_design_block(a, "_A", "A ") if design
+                                                    else ""))
+        body += f'''
+# B - A, as the compare readouts give it
+print(f"B - A: fixed array F_T,x/(mu0 F_N) "
+      f"{{fixed.FTx_over_mu0FN - fixed_A.FTx_over_mu0FN:+.6g}}, uniform array "
+      f"{{float(uniform.{attribute}) - float(uniform_A.{attribute}):+.6g}}")
+'''
+        if design:
+            body += ('print(f"B - A: design array F_T,x/(mu0 F_N) "\n'
+                     '      f"{float(array.array.FTx_over_mu0FN - array_A.array.FTx_over_mu0FN)'
+                     ':+.6g}")\n')
     return f'''\
 # The dashboard's current view as Python (micropillar-friction {__version__})
 import math
 
-from model import Params, fixed_orientation, simulate_support, uniform_array
+{imports}
 
-params = {params}
-
-# Support tab: the fixed-orientation array at theta0 (Figs. 9-11) and the contact of its
-# support, integrated with the array's load factor beta (Eqs. 5-9, Fig. 7)
-fixed = fixed_orientation(params, beta={source(beta)}, rtol={source(state.rtol)})
-support = simulate_support(params.replace(beta=fixed.beta), rtol={source(state.rtol)},
-                           samples={worker.SAMPLES}, max_steps={worker.MAX_STEPS})
-print(f"fixed array: F_T,x/(mu0 F_N) = {{fixed.FTx_over_mu0FN!r}}, "
-      f"D_y/D_x = {{fixed.Dy_over_Dx!r}}, beta = {{fixed.beta!r}}")
-print(f"support: t_out = {{support.t_out!r}}, W = {{support.W!r}}, "
-      f"D_x = {{support.D_x!r}}, D_y = {{support.D_y!r}}")
-
-# Readouts: the uniform-orientation array, theta0 uniform on [0, 2 pi) (Figs. 5, 6, 8)
-springs = {springs}
-uniform = uniform_array(springs, beta={source(beta)}, tol={source(worker.UNIFORM_TOL)})
-print(f"uniform array: F_T,x/(mu0 F_N) = {{float(uniform.{attribute})!r}}"
-      f" ({meaning})")
-print(f"uniform array: D_y/D_x = {{float(uniform.Dy_over_Dx)!r}}, "
-      f"N_c/N_c0 = {{float(uniform.Nc_over_Nc0)!r}}")
-'''
+{body}'''

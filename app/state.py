@@ -16,10 +16,11 @@ import param
 from model import REGIMES, Params
 from model.controls import OBJECTIVES
 
+from .pinned_state import PINNED_ALL, PINNED_DIST_KEYS, PINNED_KEYS, complete
 from .urlstate import (AVERAGES, BETA_BOUNDS, BOUND_BOUNDS, DEFAULTS, DESIGN_INPUTS,
                        DIST_FAMILIES, F_N_BOUNDS, K_BOUNDS, KAPPA_BOUNDS, MAP_QUANTITIES,
-                       MIX_BOUNDS, ORIENTATIONS, PINNED_KEYS, PSI_BOUNDS, RTOLS, TABS, parse,
-                       serialize, to_search)
+                       MIX_BOUNDS, ORIENTATIONS, PSI_BOUNDS, RTOLS, TABS, parse, serialize,
+                       to_search)
 
 #: Preset buttons: regime -> (k_r, k_theta) (Fig. 6 caption).
 PRESETS = {name: (p.k_r, p.k_theta) for name, p in REGIMES.items()}
@@ -41,6 +42,7 @@ DESIGN_KEYS = tuple(DESIGN_INPUTS)
 #: Parameters of the Design tab's orientation distribution.
 DIST_KEYS = ("dist_family", "dist_deg", "dist_kappa", "dist_psi", "mix_weight", "dist2_family",
              "dist2_deg", "dist2_kappa", "dist_hist")
+assert DIST_KEYS == PINNED_DIST_KEYS, "a pinned state keeps the Design tab's distribution"
 #: Parameters of what "Optimise" seeks on the Design tab.
 OPTIMUM_KEYS = ("opt_objective", "opt_bound")
 #: Parameters of how the page is shown, not of the physics: Reset keeps them.
@@ -84,6 +86,23 @@ def _editor_values(d: dict, which: str) -> dict:
     return values
 
 
+def distribution_of(values) -> dict:
+    """The orientation distribution of the Design tab's ``values`` (a mapping holding
+    ``DIST_KEYS``: the state's, or a pinned state's), as ``model.distributions.from_dict``
+    reads it (angles in degrees; psi is separate): one component, or with ``mix_weight``
+    > 0 the mixture of two weighted components."""
+    hist = values.get("dist_hist")
+    first = _component(values["dist_family"], values["dist_deg"], values["dist_kappa"], hist)
+    w = float(values["mix_weight"])
+    if w <= 0.0:
+        return first
+    second = _component(values["dist2_family"], values["dist2_deg"], values["dist2_kappa"],
+                        hist)
+    if w >= 1.0:
+        return second
+    return {"family": "mixture", "components": [first, second], "weights": [1.0 - w, w]}
+
+
 def _design_parameters() -> dict:
     return {name: param.String(DEFAULTS[name], doc=f"Design tab: the {what}, a quantity with "
                                f"its unit such as {DEFAULTS[name] or '0.36 GPa'!r}")
@@ -119,7 +138,8 @@ class ExplorerState(param.Parameterized):
     play = param.Boolean(DEFAULTS["play"], doc="start the animations when the page opens")
     notice = param.String("", doc="a message for the page (unusable URL values)")
     pinned = param.Dict(None, allow_None=True, doc=(
-        "the pinned state A of a comparison ({name: value} of PINNED_KEYS), or None"))
+        "the pinned state A of a comparison ({name: value} of app.pinned_state.PINNED_ALL:"
+        " the support's inputs and the Design tab's), or None"))
 
     # ------------------------------------------------------------------ Design tab
     # A pillar array in physical units (text with units, parsed by model.units): set below
@@ -165,17 +185,8 @@ class ExplorerState(param.Parameterized):
 
     @property
     def distribution(self) -> dict:
-        """The Design tab's orientation distribution, as ``model.distributions.from_dict``
-        reads it (angles in degrees; psi is separate): one component, or with
-        ``mix_weight`` > 0 the mixture of two weighted components."""
-        first = _component(self.dist_family, self.dist_deg, self.dist_kappa, self.dist_hist)
-        w = float(self.mix_weight)
-        if w <= 0.0:
-            return first
-        second = _component(self.dist2_family, self.dist2_deg, self.dist2_kappa, self.dist_hist)
-        if w >= 1.0:
-            return second
-        return {"family": "mixture", "components": [first, second], "weights": [1.0 - w, w]}
+        """The Design tab's orientation distribution (``distribution_of`` its values)."""
+        return distribution_of({name: getattr(self, name) for name in DIST_KEYS})
 
     def set_distribution(self, d: dict) -> None:
         """Set the editor from a distribution's ``to_dict`` (e.g. an optimum); a mixture
@@ -237,8 +248,9 @@ class ExplorerState(param.Parameterized):
 
     # ------------------------------------------------------------------ compare
     def snapshot(self) -> dict:
-        """The controls a pinned state keeps (``PINNED_KEYS``), as they are now."""
-        return {name: getattr(self, name) for name in PINNED_KEYS}
+        """The controls a pinned state keeps (``PINNED_ALL``: the support's and the Design
+        tab's), as they are now."""
+        return {name: getattr(self, name) for name in PINNED_ALL}
 
     def pin(self) -> None:
         """Pin the current state as "A"; the controls go on as "B"."""
@@ -251,7 +263,7 @@ class ExplorerState(param.Parameterized):
         """Exchange A and B: the controls take the pinned state, which pins the current one."""
         if self.pinned is None:
             return
-        a, b = dict(self.pinned), self.snapshot()
+        a, b = complete(self.pinned), self.snapshot()
         self.param.update(**a, pinned=b)
 
     # ------------------------------------------------------------------ URL

@@ -37,7 +37,8 @@ URL keys (values in the units of the controls):
 ``bound``      Design tab: its bound, |F_T,y|/(mu0 F_N) or F_T,x/(mu0 F_N), in [0, 2]
 ``A``          the pinned state of a comparison, its keys and values as above joined as
                ``key:value`` by commas: ``A=k_r:0.5,k_theta:0.2,F_N:1,theta0_deg:90``
-               (of ``PINNED_URL_KEYS``; ``rtol`` and ``beta`` only when not the default)
+               (``rtol``, ``beta`` and the Design tab's keys only when not the default;
+               at most ``MAX_PINNED_CHARS``; see ``app.pinned_state``)
 =============  ====================================================================
 """
 from __future__ import annotations
@@ -81,11 +82,10 @@ DEFAULTS = dict(k_r=CONTROLS["k_r"].default, k_theta=CONTROLS["k_theta"].default
                 map_quantity=MAP_QUANTITIES[0], tab="support", projector=False,
                 orientation="uniform", play=False, pinned=None)
 
-#: What a pinned state "A" keeps (``ExplorerState.pin``): every input of the support, the
-#: orientation sweep, the uniform array and the load curve.
-PINNED_KEYS = ("k_r", "k_theta", "F_N", "theta0", "rtol", "beta_mode", "beta")
-#: Their URL keys, which ``A=key:value,...`` may hold.
-PINNED_URL_KEYS = ("k_r", "k_theta", "F_N", "theta0_deg", "rtol", "beta")
+#: The longest ``A=`` value read (``app.pinned_state``): the support's values (under 100
+#: characters) and every design input at its longest (40) with every distribution value
+#: take under 900.
+MAX_PINNED_CHARS = 1000
 
 # ---------------------------------------------------------------- Design tab
 #: The default pillars: the LDPE example of the notes (``PillarDesign.example``) at V0 = 1
@@ -257,36 +257,16 @@ def serialize(values: Mapping) -> dict[str, str]:
     for key, name in _DESIGN_NUMBERS:
         if design[name] != DEFAULTS[name]:
             out[key] = _fmt(design[name])
+            if key.endswith("_deg") and key != "psi_deg" and float(out[key]) >= 360.0:
+                out[key] = "0"  # an angle in [0, 360) that rounds to 360, as theta0
     if design["opt_bound"] is not None:
         out["bound"] = _fmt(design["opt_bound"])
     if link_text(design["dist_hist"]):
         out["hist"] = link_text(design["dist_hist"])
     if values.get("pinned"):
+        from .pinned_state import pinned_text  # which writes A with this function
         out["A"] = pinned_text(values["pinned"])
     return out
-
-
-PINNED_EXPECTED = ("key:value pairs joined by commas, of " + ", ".join(PINNED_URL_KEYS)
-                   + ", such as k_r:0.5,k_theta:0.2,F_N:1,theta0_deg:90")
-
-
-def pinned_text(pinned: Mapping) -> str:
-    """The ``A=`` text of a pinned state: its URL values (as ``serialize``) as ``k:v,...``."""
-    query = serialize({**DEFAULTS, **{k: pinned[k] for k in PINNED_KEYS}})
-    return ",".join(f"{key}:{query[key]}" for key in PINNED_URL_KEYS if key in query)
-
-
-def parse_pinned(text: str) -> dict | None:
-    """The pinned state an ``A=`` text describes (defaults for keys it omits), or None when
-    any part is unusable: comparing with a state other than the one written is worse."""
-    pairs = [part.split(":", 1) for part in text.split(",") if part.strip()]
-    if not pairs or any(len(pair) != 2 for pair in pairs):
-        return None
-    query = {key.strip(): value.strip() for key, value in pairs}
-    if not set(query) <= set(PINNED_URL_KEYS):
-        return None
-    values, notices = parse(query)
-    return None if notices else {k: values.get(k, DEFAULTS[k]) for k in PINNED_KEYS}
 
 
 def to_search(values: Mapping) -> str:
@@ -330,10 +310,11 @@ def parse(query: Mapping | str) -> tuple[dict, list[str]]:
         if key not in ("beta", "A") and key not in _READERS:
             notices.append(f"Unknown URL parameter {_shown(key)} ignored.")
             continue
-        if len(text) > MAX_VALUE_CHARS:
+        if len(text) > (MAX_PINNED_CHARS if key == "A" else MAX_VALUE_CHARS):
             notices.append(_too_long(key, text))
             continue
         if key == "A":
+            from .pinned_state import PINNED_EXPECTED, parse_pinned  # which reads with parse
             pinned = parse_pinned(text)
             if pinned is None:
                 notices.append(_notice("A", text, PINNED_EXPECTED))
@@ -371,8 +352,9 @@ def _shown(text: str) -> str:
 
 
 def _too_long(key: str, text: str) -> str:
+    most = MAX_PINNED_CHARS if key == "A" else MAX_VALUE_CHARS
     return (f"URL parameter {key}={_shown(text)} is too long ({len(text)} characters, at most "
-            f"{MAX_VALUE_CHARS}); the default is used.")
+            f"{most}); the default is used.")
 
 
 def _notice(key: str, text: str, expected: str) -> str:

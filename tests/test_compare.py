@@ -18,8 +18,9 @@ from hypothesis import strategies as st
 from app import results as results_module
 from app import slot
 from app.state import ExplorerState
-from app.urlstate import (BETA_BOUNDS, F_N_BOUNDS, K_BOUNDS, PINNED_KEYS, RTOLS,
-                          parse, parse_pinned, pinned_text, serialize, to_search)
+from app.pinned_state import PINNED_ALL, PINNED_KEYS, parse_pinned, pinned_text
+from app.urlstate import (BETA_BOUNDS, F_N_BOUNDS, K_BOUNDS, RTOLS, parse, serialize,
+                          to_search)
 from fakes import InProcessPool
 
 PINNED = dict(k_r=0.5, k_theta=0.2, F_N=1.0, theta0=60.0, rtol=1e-6, beta_mode="self",
@@ -41,7 +42,7 @@ def test_a_pinned_state_round_trips_through_the_url(k_r, k_theta, F_N, theta0, r
     assert len(urllib.parse.parse_qs(search[1:])["A"][0]) <= 100  # MAX_VALUE_CHARS
     back = ExplorerState()
     assert back.load_query(search) == []
-    assert back.k_r == 1.0 and set(back.pinned) == set(PINNED_KEYS)
+    assert back.k_r == 1.0 and set(back.pinned) == set(PINNED_ALL)
     for name, value in pinned.items():
         got = back.pinned[name]
         if name == "theta0":  # an angle: 359.9999996 deg comes back as 0
@@ -59,7 +60,9 @@ def test_the_pinned_text_is_short_and_readable_in_the_address():
         {**ExplorerState().values(), "pinned": PINNED})
     fixed = pinned_text({**PINNED, "rtol": 1e-8, "beta_mode": "fixed", "beta": 0.5})
     assert fixed.endswith(",rtol:1e-08,beta:0.5")
-    assert parse_pinned(fixed) == {**PINNED, "rtol": 1e-8, "beta_mode": "fixed", "beta": 0.5}
+    assert parse_pinned(fixed) == {**ExplorerState().snapshot(), **PINNED, "rtol": 1e-8,
+                                   "beta_mode": "fixed", "beta": 0.5}
+    assert set(PINNED_KEYS) < set(PINNED_ALL)
     assert "A" not in serialize(ExplorerState().values())  # nothing pinned: no A=
 
 
@@ -82,7 +85,7 @@ def test_a_garbled_pinned_state_gives_a_notice_and_pins_nothing(junk):
 
 
 def test_an_over_long_pinned_state_is_refused_unread():
-    values, notices = parse({"A": "k_r:0.5," * 50})
+    values, notices = parse({"A": "k_r:0.5," * 130})  # over MAX_PINNED_CHARS
     assert "pinned" not in values and "too long" in notices[0]
 
 
@@ -93,9 +96,11 @@ def test_pin_swap_and_clear():
     s.pin()
     assert s.pinned == s.snapshot()
     s.param.update(k_r=0.5, theta0=30.0)
+    s.dist_family = "pair"  # the Design tab's values are exchanged too
     a, b = dict(s.pinned), s.snapshot()
     s.swap_pin()
     assert s.snapshot() == a and s.pinned == b
+    assert s.dist_family == "vonmises" and s.pinned["dist_family"] == "pair"
     s.reset()  # Reset is about the physics: the comparison stays
     assert s.pinned == b and s.k_r == 3.0
     s.clear_pin()

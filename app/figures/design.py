@@ -35,13 +35,15 @@ def map_axis(*values) -> tuple[float, float]:
     return max(lo, MODEL_RANGE[0] / 3), min(hi, MODEL_RANGE[1] * 3)
 
 
-def design_map_data(point: dict | None) -> tuple[dict, tuple, tuple]:
-    """Sources of the design on the map, and the x (k_r) and y (k_theta) axis ranges."""
+def design_map_data(point: dict | None, cover: dict | None = None) -> tuple[dict, tuple, tuple]:
+    """Sources of the design on the map, and the x (k_r) and y (k_theta) axis ranges (which
+    also hold the point ``cover``: a compared design's)."""
     empty = {"design_point": {"k_r": [], "k_theta": [], "label": []},
              "design_computed": {"k_r": [], "k_theta": []},
              "design_line": {"k_r": [], "k_theta": [], "V0": []}}
+    extra = (cover or {}).get("point") or {}
     if point is None:
-        return empty, K_AXIS, K_AXIS
+        return empty, map_axis(extra.get("k_r")), map_axis(extra.get("k_theta"))
     p, c, line = point["point"], point["computed"], point["speed_line"]
     data = dict(empty)
     data["design_point"] = {"k_r": [p["k_r"]], "k_theta": [p["k_theta"]],
@@ -50,7 +52,8 @@ def design_map_data(point: dict | None) -> tuple[dict, tuple, tuple]:
         data["design_computed"] = {"k_r": [c["k_r"]], "k_theta": [c["k_theta"]]}
     data["design_line"] = {"k_r": list(line["k_r"]), "k_theta": list(line["k_theta"]),
                            "V0": list(line["V0_m_per_s"])}
-    return data, map_axis(p["k_r"]), map_axis(p["k_theta"])
+    return (data, map_axis(p["k_r"], extra.get("k_r")),
+            map_axis(p["k_theta"], extra.get("k_theta")))
 
 
 def design_map_figure(regime_map, point: dict | None = None, width: int = 330,
@@ -77,13 +80,15 @@ def design_map_figure(regime_map, point: dict | None = None, width: int = 330,
     return fig
 
 
-def density_data(distribution: dict | None, psi_deg: float, rim: float) -> dict:
+def density_data(distribution: dict | None, psi_deg: float, rim: float,
+                 suffix: str = "") -> dict:
     """The distribution seen at ``psi_deg`` as a closed curve of radius rim * p / max p and
-    its point masses as spokes of length rim * weight / max weight."""
+    its point masses as spokes of length rim * weight / max weight (sources named
+    ``design_density``, ``design_atoms``, with ``suffix`` appended)."""
     curve = {"x": [], "y": [], "theta0_deg": [], "value": []}
     atoms = {"xs": [], "ys": [], "weight": []}
     if distribution is None:
-        return {"design_density": curve, "design_atoms": atoms}
+        return {f"design_density{suffix}": curve, f"design_atoms{suffix}": atoms}
     dist = rotated(from_dict(distribution), math.radians(psi_deg))
     theta = np.linspace(0.0, 2 * math.pi, DENSITY_N)
     p = np.asarray(dist.density(theta), float)
@@ -97,14 +102,17 @@ def density_data(distribution: dict | None, psi_deg: float, rim: float) -> dict:
         atoms = {"xs": [[0.0, rim * w / top * math.cos(t)] for t, w in pairs],
                  "ys": [[0.0, rim * w / top * math.sin(t)] for t, w in pairs],
                  "weight": [w for _, w in pairs]}
-    return {"design_density": curve, "design_atoms": atoms}
+    return {f"design_density{suffix}": curve, f"design_atoms{suffix}": atoms}
 
 
-def design_polar_data(sweep, distribution: dict | None, psi_deg: float) -> tuple[dict, tuple]:
-    """Fig. 11a of ``sweep`` (a SweepResult or None) with the distribution drawn over it."""
+def design_polar_data(sweep, distribution: dict | None, psi_deg: float,
+                      cover=None) -> tuple[dict, tuple]:
+    """Fig. 11a of ``sweep`` (a SweepResult or None) with the distribution drawn over it;
+    the radial axis also covers the sweep ``cover`` (a compared design's)."""
     theta0 = [] if sweep is None else sweep.columns["theta0"]
     values = [] if sweep is None else sweep.columns["FTx_over_mu0FN"]
-    data, axis = polar_data("FTx", theta0, values)
+    more = [] if cover is None else cover.columns["FTx_over_mu0FN"]
+    data, axis = polar_data("FTx", theta0, values, more)
     data.update(density_data(distribution, psi_deg, axis[1] - axis[0]))
     return data, axis
 

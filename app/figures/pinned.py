@@ -4,8 +4,9 @@
 drawn below B's -- with a legend above the plot naming "B (current)" and "A (pinned)";
 both stay hidden (``show_pinned``) while nothing is pinned, so a page without a
 comparison draws nothing more. The ``*_A`` functions give the data of A's sources, named
-as B's with ``_A`` appended (``orbit_A``, ``forces_A``, ``polar_FTx_A``, ``load_curve_A``)
-so browser tests find both data sets.
+as B's with ``_A`` appended (``orbit_A``, ``forces_A``, ``polar_FTx_A``, ``load_curve_A``;
+on the Design tab ``design_point_A``, ``design_curve_A``, ``design_density_A``,
+``design_atoms_A``) so browser tests find both data sets.
 """
 from __future__ import annotations
 
@@ -15,7 +16,8 @@ import numpy as np
 from bokeh.models import Legend, LegendItem
 
 from .common import BLUE, GREY, VERMILION, source
-from .polar import full_circle
+from .design import density_data
+from .polar import QUANTITIES, full_circle
 
 #: How A is drawn: B's line muted.
 MUTED = dict(line_alpha=0.55, line_dash=[6, 3])
@@ -58,6 +60,26 @@ def load_curve_A(points: dict | None, column: str) -> dict:
     return {"load_curve_A": {"F_N": F, "value": [points[f][column] for f in F]}}
 
 
+def design_point_A(point: dict | None) -> dict:
+    """A's design on the map of the Design tab: its dimensionless point (Eq. 5)."""
+    if point is None:
+        return {"design_point_A": _empty("k_r", "k_theta", "label")}
+    p = point["point"]
+    return {"design_point_A": {"k_r": [p["k_r"]], "k_theta": [p["k_theta"]],
+                               "label": [f"A: V₀ = {point['V0_m_per_s']:.3g} m/s"]}}
+
+
+def design_polar_A(sweep, distribution: dict | None, psi_deg: float, axis) -> dict:
+    """A's Fig. 11a curve (``sweep`` at its design's springs) and its orientation density,
+    in the radial ``axis`` of B's diagram (which covers both curves)."""
+    theta0 = values = None
+    if sweep is not None:
+        theta0, values = sweep.columns["theta0"], sweep.columns["FTx_over_mu0FN"]
+    curve = polar_A("FTx", theta0, values, QUANTITIES["FTx"][2], axis)["polar_FTx_A"]
+    rim = 1.0 if axis is None else axis[1] - axis[0]
+    return {"design_curve_A": curve, **density_data(distribution, psi_deg, rim, "_A")}
+
+
 def add_pinned(fig, kind: str, b_source: str, key: str = "") -> list:
     """Add A's glyphs of ``kind`` (scene, forces, polar, load) to ``fig`` and the A/B
     legend (B's glyph in it: the first drawn from the source ``b_source``); returns A's
@@ -83,12 +105,30 @@ def add_pinned(fig, kind: str, b_source: str, key: str = "") -> list:
         renderers = [fig.line("F_N", "value", source=src, line_color=GREY, line_width=2.5,
                               **MUTED),
                      fig.scatter("F_N", "value", source=src, size=6, color=GREY, alpha=0.7)]
+    elif kind == "design_map":
+        src = source("design_point_A", design_point_A(None)["design_point_A"])
+        renderers = [fig.scatter("k_r", "k_theta", source=src, marker="star", size=17,
+                                 fill_color=GREY, fill_alpha=0.35, line_color=GREY,
+                                 line_width=1.5)]
+    elif kind == "design_polar":
+        data = design_polar_A(None, None, 0.0, None)
+        src = {n: source(n, d) for n, d in data.items()}
+        renderers = [fig.patch("x", "y", source=src["design_density_A"], fill_alpha=0.0,
+                               line_color=GREY, line_width=1.5, **MUTED),
+                     fig.line("x", "y", source=src["design_curve_A"], line_color=GREY,
+                              line_width=2, **MUTED),
+                     fig.multi_line("xs", "ys", source=src["design_atoms_A"], line_color=GREY,
+                                    line_width=4, line_alpha=0.5)]
     else:
-        raise ValueError(f"kind={kind!r}: choose scene, forces, polar or load")
-    for renderer in renderers:  # under B's glyphs, which stay in front
+        raise ValueError(f"kind={kind!r}: choose scene, forces, polar, load, design_map or "
+                         "design_polar")
+    for renderer in renderers:
         renderer.visible = False
-        fig.renderers.remove(renderer)
-        fig.renderers.insert(0, renderer)
+    # Under B's glyphs, which stay in front: below everything, or on the map just below
+    # B's point (above the map's cells).
+    rest = [r for r in fig.renderers if all(r is not a for a in renderers)]
+    at = next(i for i, r in enumerate(rest) if r is b_renderer) if kind == "design_map" else 0
+    fig.renderers = [*rest[:at], *renderers, *rest[at:]]
     legend = Legend(items=[LegendItem(label=B_LABEL, renderers=[b_renderer]),
                            LegendItem(label=A_LABEL, renderers=[renderers[0]])],
                     name=f"{fig.name}_compare_legend", orientation="horizontal",

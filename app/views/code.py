@@ -1,6 +1,7 @@
 """This view as code: the Python snippet (public ``model`` API) that reproduces the numbers
-on the page for the current controls (``app.snippet.view_as_python``), folded in a card,
-and the software's version and how to cite it."""
+on the page for the current controls (``app.snippet.view_as_python``; with a pinned state
+A, A's numbers too, and on the Design tab the design's array), folded in a card, and the
+software's version and how to cite it."""
 from __future__ import annotations
 
 import panel as pn
@@ -9,7 +10,7 @@ import param
 from ..about import version_text
 from ..results import SessionResults
 from ..snippet import view_as_python
-from ..state import ExplorerState
+from ..state import DESIGN_KEYS, DIST_KEYS, ExplorerState
 
 
 class CodeView(pn.viewable.Viewer):
@@ -31,7 +32,9 @@ class CodeView(pn.viewable.Viewer):
         self._write()
 
     @param.depends("state.k_r", "state.k_theta", "state.F_N", "state.theta0", "state.rtol",
-                   "state.beta_mode", "state.beta", "state.average", watch=True)
+                   "state.beta_mode", "state.beta", "state.average", "state.pinned",
+                   "state.tab", *(f"state.{name}" for name in DESIGN_KEYS + DIST_KEYS),
+                   watch=True)
     def _write(self) -> None:
         try:
             self.code.object = f"```python\n{view_as_python(self.state)}```"

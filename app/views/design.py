@@ -4,7 +4,10 @@ readouts (dimensionless and physical) and the best distribution on request.
 
 Renderer of ``SessionResults.design_point``, ``.design_array``, ``.design_polar`` and
 ``.design_optimum``; the inputs and the distribution are ``ExplorerState`` parameters
-(so a shared link restores them).
+(so a shared link restores them). With a pinned state A (``app.compare``) its point is
+marked muted on the map, its Fig. 11a curve and distribution are drawn muted under B's,
+and the readouts give A's array, B's and B − A (``.design_point_A``, ``.design_array_A``,
+``.design_polar_A``).
 """
 from __future__ import annotations
 
@@ -19,10 +22,13 @@ from model.shipped_map import load_regime_map
 from .. import figures as F
 from ..figures.design import (design_map_data, design_map_figure, design_polar_data,
                               design_polar_figure)
+from ..figures.pinned import add_pinned, design_point_A, design_polar_A, show_pinned
 from ..figures.polar import set_extent
+from ..pinned_state import complete
 from ..results import SessionResults, optimum_family
-from ..state import ExplorerState
+from ..state import ExplorerState, distribution_of
 from ..urlstate import DESIGN_INPUTS
+from .compare_tables import design_compare_markdown, distribution_words
 from .design_upload import HistogramUpload
 from .widgets import caption, look
 
@@ -120,6 +126,9 @@ class DesignView(pn.viewable.Viewer):
         self.readouts = pn.pane.Markdown("", width=310, margin=(0, 5),
                                          styles={"font-size": "0.88em"},
                                          css_classes=["design-readouts"])
+        self.compare = pn.pane.Markdown("", width=310, margin=(0, 5), visible=False,
+                                        styles={"font-size": "0.88em"},
+                                        css_classes=["design-compare"])
         self.optimum_text = pn.pane.Markdown("", width=310, margin=(0, 5),
                                              styles={"font-size": "0.88em"},
                                              css_classes=["design-optimum"])
@@ -129,6 +138,11 @@ class DesignView(pn.viewable.Viewer):
             shipped = None
         self.map_figure = design_map_figure(shipped, self.results.design_point)
         self.polar_figure = design_polar_figure(None, s.distribution, s.dist_psi)
+        # A pinned state's point, curve and distribution, under B's; hidden until one is pinned.
+        self._pinned = {self.map_figure: add_pinned(self.map_figure, "design_map",
+                                                    "design_point"),
+                        self.polar_figure: add_pinned(self.polar_figure, "design_polar",
+                                                      "design_density")}
         self._map_sources = F.sources(self.map_figure)
         self._polar_sources = F.sources(self.polar_figure)
         self.map_pane = pn.pane.Bokeh(self.map_figure, margin=0)
@@ -141,17 +155,26 @@ class DesignView(pn.viewable.Viewer):
         self._on_array()
         self._on_optimum()
 
+    @property
+    def _a(self) -> dict | None:
+        """The pinned state A (every key), or None."""
+        return None if self.state.pinned is None else complete(self.state.pinned)
+
     # ------------------------------------------------------------------ the point
-    @param.depends("results.design_point", "results.errors", watch=True)
+    @param.depends("results.design_point", "results.errors", "results.design_point_A",
+                   "state.pinned", watch=True)
     def _on_point(self) -> None:
         pt = self.results.design_point
         error = self.results.errors.get("design_point", "")
-        data, xr, yr = design_map_data(pt)
+        a = self.results.design_point_A if self._a is not None else None
+        data, xr, yr = design_map_data(pt, a)
+        data.update(design_point_A(a))
 
         def draw():
             F.update(self._map_sources, data)
             self.map_figure.x_range.update(start=xr[0], end=xr[1])
             self.map_figure.y_range.update(start=yr[0], end=yr[1])
+            show_pinned(self.map_figure, self._pinned[self.map_figure], a is not None)
         _locked(draw)
         if error and (pt is None or error != pt.get("error")):
             self.point_text.object = f"**Not computed:** {error}"
@@ -176,22 +199,35 @@ class DesignView(pn.viewable.Viewer):
         lines.append(f"Regimes by speed — {reach}; the paper's map: "
                      f"{_speeds(pt['intervals']['V0_in_explored_map_m_per_s'])}.")
         lines.append("On the map: ★ this design, dashed: its path as V₀ changes"
-                     + (", ■ the point computed." if pt["status"] == "scaled" else "."))
+                     + (", ■ the point computed" if pt["status"] == "scaled" else "")
+                     + (", grey ★ the pinned A." if a is not None else "."))
+        if a is not None:
+            q = a["point"]
+            lines.append(f"A (pinned): k̃_r = {_g(q['k_r'])}, k̃_θ = {_g(q['k_theta'])}, "
+                         f"F̃_N = {_g(q['F_N'])}, regime **{a['regime']}**.")
         self.point_text.object = "  \n".join(lines)
 
     # ------------------------------------------------------------------ the polar curve
     @param.depends("results.design_polar", "state.dist_family", "state.dist_deg",
                    "state.dist_kappa", "state.dist_psi", "state.mix_weight",
                    "state.dist2_family", "state.dist2_deg", "state.dist2_kappa",
-                   "state.dist_hist", watch=True)
+                   "state.dist_hist", "results.design_polar_A", "state.pinned", watch=True)
     def _on_polar(self) -> None:
-        s = self.state
-        data, axis = design_polar_data(self.results.design_polar, s.distribution, s.dist_psi)
+        s, a = self.state, self._a
+        sweep_A = self.results.design_polar_A if a is not None else None
+        data, axis = design_polar_data(self.results.design_polar, s.distribution, s.dist_psi,
+                                       sweep_A)
+        if a is not None:
+            data.update(design_polar_A(sweep_A, distribution_of(a),
+                                       a["dist_psi"], axis))
+        else:
+            data.update(design_polar_A(None, None, 0.0, axis))
 
         def draw():
             F.update(self._polar_sources, {k: v for k, v in data.items()
                                            if k in self._polar_sources})
             set_extent(self.polar_figure, axis)
+            show_pinned(self.polar_figure, self._pinned[self.polar_figure], a is not None)
         _locked(draw)
         self.kappa.disabled = s.dist_family != "vonmises"
         self.angle.disabled = s.dist_family in ("uniform", "histogram")
@@ -201,11 +237,20 @@ class DesignView(pn.viewable.Viewer):
         self.angle2.disabled = not second or s.dist2_family in ("uniform", "histogram")
 
     # ------------------------------------------------------------------ readouts
-    @param.depends("results.design_array", "results.busy", "results.errors", watch=True)
+    @param.depends("results.design_array", "results.busy", "results.errors",
+                   "results.design_array_A", "state.pinned", watch=True)
     def _on_array(self) -> None:
         r = self.results
         a, busy = r.design_array, "design_array" in r.busy
         error = r.errors.get("design_array", "")
+        pinned = self._a
+        self.compare.visible = pinned is not None
+        if pinned is not None:  # A beside B, with B − A
+            s = self.state
+            self.compare.object = design_compare_markdown(
+                r.design_array_A, a,
+                distribution_words(distribution_of(pinned), pinned["dist_psi"]),
+                distribution_words(s.distribution, s.dist_psi))
         if a is None:
             self.readouts.object = error or ("Computing the array …" if busy else
                                              "The array is computed for a usable design.")
@@ -286,7 +331,7 @@ class DesignView(pn.viewable.Viewer):
         right = pn.Column(
             pn.Row(self.family, self.angle, self.kappa, self.psi, margin=0),
             pn.Row(self.family2, self.angle2, self.kappa2, self.mix, margin=0), self.upload,
-            self.readouts, pn.Row(self.objective, self.bound, margin=0),
+            self.readouts, self.compare, pn.Row(self.objective, self.bound, margin=0),
             pn.Row(self.optimise_button, self.cancel_button, margin=0),
             self.optimum_text, width=315)
         return pn.Row(left, pn.Column(self.map_pane, self.polar_pane, margin=0, width=330),

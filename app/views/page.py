@@ -236,18 +236,23 @@ class Dashboard(pn.viewable.Viewer):
 
     # ------------------------------------------------------------------ downloads
     def _trajectory_csv(self):
-        return io.StringIO(trajectory_csv(self.results.support))
+        r = self.results  # with a pinned state A, A's trajectory beside B's
+        return io.StringIO(trajectory_csv(r.support, pinned=r.support_A,
+                                          comparing=r.comparing))
 
     def _polar_csv(self):
-        """The polar sweep of the current springs and load, from what is computed: never
-        waits. If it is not computed yet, the sweep starts and the file says so."""
-        slot = self.results.slots["polar"]
-        if not slot.current:
-            slot.request()
+        """The polar sweep of the current springs and load (and of a pinned state A), from
+        what is computed: never waits. If it is not computed yet, the sweep starts and the
+        file says so."""
+        r = self.results
+        slots = [s for s in (r.slots["polar"], r.pinned_slot("polar")) if s is not None]
+        for slot in slots:
             if not slot.current:
-                return io.StringIO("# The polar sweep for these settings is being computed "
-                                   "(the Polar tab shows it): download again in a moment.\n")
-        return io.StringIO(sweep_csv(self.results.polar))
+                slot.request()
+        if not all(slot.current for slot in slots):
+            return io.StringIO("# The polar sweep for these settings is being computed "
+                               "(the Polar tab shows it): download again in a moment.\n")
+        return io.StringIO(sweep_csv(r.polar, pinned=r.polar_A, comparing=r.comparing))
 
     def _name_downloads(self, *_events) -> None:
         s = self.state

@@ -17,6 +17,7 @@ from ..figures.arrays import AVERAGE_COLUMNS
 from ..results import SessionResults
 from ..state import ExplorerState
 from ..texts import MECHANISMS
+from .compare_tables import difference
 
 TABLE_CSS = ("table {border-collapse: collapse; width: 100%;} "
              "td, th {padding: 2px 6px; line-height: 1.25;}")
@@ -47,6 +48,25 @@ def headline_text(fixed: float | None, theta0_deg: float, uniform: float | None,
              if fixed is not None else "Friction: being computed")
     second = change_words(uniform) if uniform is not None else (uniform_note or "being computed")
     return f"{first}; averaged over all orientations: {second}."
+
+
+def _short_words(ratio: float | None) -> str:
+    """``change_words`` without "a rigid surface", for the headline's clause about A."""
+    if ratio is None or not math.isfinite(ratio):
+        return "being computed"
+    percent = 100.0 * (1.0 - ratio)
+    return "as rigid" if abs(percent) < 0.05 else \
+        f"{abs(percent):.1f} % {'below' if percent > 0 else 'above'}"
+
+
+def pinned_clause(a_fixed: float | None, a_theta0_deg: float, a_uniform: float | None,
+                  fixed: float | None, uniform: float | None) -> str:
+    """The headline's clause about a pinned state A: its friction as ``headline_text``
+    says B's, and B − A of F_T,x/(mu0 F_N), fixed and averaged, e.g. "A (pinned): 8.1 %
+    below at θ₀ = 60°, averaged: 4.9 % below; B − A = −0.026, −0.011 (F_T,x/μ₀F_N)"."""
+    d_fixed, d_uniform = difference(a_fixed, fixed)[0], difference(a_uniform, uniform)[0]
+    return (f"A (pinned): {_short_words(a_fixed)} at θ₀ = {a_theta0_deg:g}°, averaged: "
+            f"{_short_words(a_uniform)}; B − A = {d_fixed}, {d_uniform} (F_T,x/μ₀F_N)")
 
 
 def regime_markdown(regime: str) -> str:
@@ -116,13 +136,6 @@ def compared_values(support, uniform: dict | None, average: str) -> list:
     return [(uniform or {}).get(AVERAGE_COLUMNS[average]) if name is None
             else getattr(fixed, name, None) if fixed is not None else None
             for _, name in COMPARED]
-
-
-def difference(a: float | None, b: float | None) -> tuple[str, str]:
-    """B - A and its change relative to A, as text ("–" where either is missing)."""
-    if a is None or b is None or not (math.isfinite(a) and math.isfinite(b)):
-        return "–", "–"
-    return f"{b - a:+.3g}", f"{100 * (b - a) / abs(a):+.1f} %" if a != 0 else "–"
 
 
 def compare_markdown(a_support, b_support, a_uniform, b_uniform, average: str) -> str:
@@ -221,20 +234,33 @@ class HeadlineView(pn.viewable.Viewer):
         # The sentence is about the sidebar's support: the Design tab has its own numbers.
         self.pane.visible = self.state.tab != "design"
 
-    @param.depends("results.support", "results.uniform", "results.errors", "state.average",
-                   watch=True)
-    def _write(self) -> None:
-        data = self.results.support
+    def _numbers(self, data, row, failed: bool = False):
+        """F_T,x/(mu0 F_N) of the fixed array and the uniform one, and theta0 in degrees."""
         fixed = theta0 = None
         if data is not None and data.fixed is not None:
             fixed = data.fixed.FTx_over_mu0FN
             theta0 = round(math.degrees(data.params.theta0), 6)
-        row = self.results.uniform
-        failed = bool(self.results.errors.get("uniform"))
         uniform = None if failed or row is None else row[AVERAGE_COLUMNS[self.state.average]]
+        return fixed, theta0, uniform
+
+    @param.depends("results.support", "results.uniform", "results.errors", "state.average",
+                   "results.support_A", "results.uniform_A", "state.pinned", watch=True)
+    def _write(self) -> None:
+        failed = bool(self.results.errors.get("uniform"))
+        fixed, theta0, uniform = self._numbers(self.results.support, self.results.uniform,
+                                               failed)
         text = headline_text(fixed, theta0 if theta0 is not None else self.state.theta0,
                              uniform, "not computed (see the notice)" if failed else "")
-        self.pane.object = f"<span>{text}</span>"
+        html = f"<span>{text}</span>"
+        a = self.state.pinned
+        if a is not None:  # a comparison: A's numbers and B − A in a second, lighter line
+            a_fixed, a_theta0, a_uniform = self._numbers(self.results.support_A,
+                                                         self.results.uniform_A)
+            clause = pinned_clause(a_fixed, a_theta0 if a_theta0 is not None else a["theta0"],
+                                   a_uniform, fixed, uniform)
+            html += ("<br><span class='headline-compare' style='font-weight: 400; "
+                     f"font-size: 0.85em'>{clause}.</span>")
+        self.pane.object = html
 
     def __panel__(self):
         return self.pane
