@@ -23,7 +23,9 @@ from hypothesis import strategies as st
 from app import results as results_module
 from app import slot, worker
 from app.pinned_state import PINNED_ALL, complete, parse_pinned
-from app.state import ExplorerState
+from app import histogram
+from app.state import ExplorerState, distribution_of
+from app.views.compare_tables import distribution_words
 from app.urlstate import (DEFAULTS, DESIGN_INPUTS, DIST_FAMILIES, KAPPA_BOUNDS,
                           MAX_PINNED_CHARS, MIX_BOUNDS, PSI_BOUNDS, parse)
 from fakes import InProcessPool
@@ -90,10 +92,31 @@ def test_the_longest_pinned_state_fits_the_bound():
               "F_N": 1.23457, "theta0": 123.457, "rtol": 1e-8, "beta_mode": "fixed",
               "beta": 0.123457, "dist_family": "vonmises", "dist_deg": 123.457,
               "dist_kappa": 1234.57, "dist_psi": -123.457, "mix_weight": 0.123457,
-              "dist2_family": "vonmises", "dist2_deg": 123.457, "dist2_kappa": 1234.57}
+              "dist2_family": "vonmises", "dist2_deg": 123.457, "dist2_kappa": 1234.57,
+              "dist_hist": _longest_histogram()}
     text = _a_query(ExplorerState(pinned=pinned).to_search())
-    assert len(text) <= MAX_PINNED_CHARS
+    assert "hist:" in text and len(text) <= MAX_PINNED_CHARS
     assert parse_pinned(text) == complete(pinned)
+
+
+def _longest_histogram() -> dict:
+    """The histogram with the longest link text: 40 bins, long edges, two-character levels."""
+    code = "".join(histogram._ALPHABET[63] + histogram._ALPHABET[63 - i] for i in range(40))
+    hist = histogram.from_link(f"-4.56789:8.98765:{code}")
+    assert hist is not None and len(hist["weights"]) == histogram.LINK_MAX_BINS
+    return hist
+
+
+def test_a_pinned_histogram_round_trips_and_is_compared_as_a_histogram():
+    hist = histogram.from_link("-5:10:" + "__" + "AC" * 35)
+    pinned = {**ExplorerState().snapshot(), "dist_family": "histogram", "dist_hist": hist}
+    state = ExplorerState(pinned=pinned)
+    text = _a_query(state.to_search())
+    assert "hist:-5:10:" in text
+    back = parse_pinned(text)
+    assert back["dist_hist"] == hist and back["dist_family"] == "histogram"
+    assert distribution_of(back) == {"family": "histogram", **hist}
+    assert distribution_words(distribution_of(back)).startswith("histogram of 36 bins")
 
 
 @pytest.mark.parametrize("junk", [
