@@ -35,7 +35,8 @@ class ArrayView(pn.viewable.Viewer):
             self.state.param.orientation, css_classes=["ctl-orientation"],
             options={"θ₀ uniform (all directions)": "uniform",
                      "every support at θ₀ (slider)": "fixed"}, description=None,
-            margin=(4, 10))
+            margin=(4, 10), styles={"max-width": "calc(100vw - 20px)"},
+            stylesheets=[".bk-btn { white-space: normal; }"])
         self.status = pn.pane.Markdown("", css_classes=["array-status"],
                                        styles={"font-size": "0.92em"}, margin=(0, 10))
         self.pane = pn.pane.Bokeh(None, css_classes=["array-view"], margin=(0, 5),

@@ -30,7 +30,21 @@ from ..state import ExplorerState, distribution_of
 from ..urlstate import DESIGN_INPUTS
 from .compare_tables import design_compare_markdown, distribution_words
 from .design_upload import HistogramUpload
+from .layout import PHONE, grid_css
 from .widgets import caption, look
+
+#: Inputs, figures, readouts side by side (the figures take the width left); on a phone
+#: one below the other.
+DESIGN_ROW_CSS = f"""
+:host {{ width: 100% !important; }}
+.design-figures {{ flex: 1 1 0 !important; min-width: 330px; }}
+{PHONE} {{
+  :host {{ flex-direction: column !important; min-width: 0 !important; max-width: 100vw;
+           height: auto !important; flex: 0 0 auto !important; }}
+  .design-figures {{ min-width: 0 !important; max-width: calc(100vw - 8px);
+                     width: calc(100vw - 8px) !important; }}
+}}
+"""
 
 FAMILY_LABELS = {"von Mises": "vonmises", "pair ±θ₀": "pair", "fixed θ₀": "fixed",
                  "uniform": "uniform", "histogram (CSV)": "histogram"}
@@ -123,13 +137,13 @@ class DesignView(pn.viewable.Viewer):
         self.point_text = pn.pane.Markdown("", width=310, margin=(0, 5),
                                            styles={"font-size": "0.88em"},
                                            css_classes=["design-point"])
-        self.readouts = pn.pane.Markdown("", width=310, margin=(0, 5),
+        self.readouts = pn.pane.Markdown("", width=340, margin=(0, 5),
                                          styles={"font-size": "0.88em"},
                                          css_classes=["design-readouts"])
-        self.compare = pn.pane.Markdown("", width=310, margin=(0, 5), visible=False,
+        self.compare = pn.pane.Markdown("", width=340, margin=(0, 5), visible=False,
                                         styles={"font-size": "0.88em"},
                                         css_classes=["design-compare"])
-        self.optimum_text = pn.pane.Markdown("", width=310, margin=(0, 5),
+        self.optimum_text = pn.pane.Markdown("", width=340, margin=(0, 5),
                                              styles={"font-size": "0.88em"},
                                              css_classes=["design-optimum"])
         try:
@@ -145,8 +159,12 @@ class DesignView(pn.viewable.Viewer):
                                                       "design_density")}
         self._map_sources = F.sources(self.map_figure)
         self._polar_sources = F.sources(self.polar_figure)
-        self.map_pane = pn.pane.Bokeh(self.map_figure, margin=0)
-        self.polar_pane = pn.pane.Bokeh(self.polar_figure, margin=0)
+        # The figures fill the window's height beside the two columns of inputs and
+        # readouts (as the other tabs' grids do); on a phone they stack below the inputs.
+        for fig in (self.map_figure, self.polar_figure):
+            fig.update(frame_width=None, frame_height=None, sizing_mode="stretch_both")
+        self.map_pane = pn.pane.Bokeh(self.map_figure, margin=0, sizing_mode="stretch_both")
+        self.polar_pane = pn.pane.Bokeh(self.polar_figure, margin=0, sizing_mode="stretch_both")
         self._ticker = None
         for fig in (self.map_figure, self.polar_figure):
             F.style(fig, s.projector)
@@ -333,7 +351,11 @@ class DesignView(pn.viewable.Viewer):
             pn.Row(self.family2, self.angle2, self.kappa2, self.mix, margin=0), self.upload,
             self.readouts, self.compare, pn.Row(self.objective, self.bound, margin=0),
             pn.Row(self.optimise_button, self.cancel_button, margin=0),
-            self.optimum_text, width=315)
-        return pn.Row(left, pn.Column(self.map_pane, self.polar_pane, margin=0, width=330),
-                      right,
-                      css_classes=["design-view"])
+            self.optimum_text, width=345)
+        figures = pn.Column(self.map_pane, self.polar_pane, margin=0,
+                            sizing_mode="stretch_width", css_classes=["design-figures"],
+                            stylesheets=[grid_css("minmax(0, 1fr)",
+                                                  "minmax(0, 1fr) minmax(0, 1fr)",
+                                                  phone_height=360, min_height=600)])
+        return pn.Row(left, figures, right, css_classes=["design-view"],
+                      sizing_mode="stretch_width", stylesheets=[DESIGN_ROW_CSS])

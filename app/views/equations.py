@@ -14,8 +14,11 @@ class EquationsView(pn.viewable.Viewer):
         super().__init__(**params)
         style = {"font-size": "0.92em"}
         items = [pn.Column(pn.pane.Markdown(caption, styles=style, margin=(0, 10)),
+                           # A long equation scrolls within its line on a phone.
                            pn.pane.LaTeX(f"$${latex}$$", renderer="mathjax",
-                                         styles={"font-size": "1em"}, margin=(0, 10)),
+                                         styles={"font-size": "1em", "overflow-x": "auto",
+                                                 "max-width": "calc(100vw - 30px)"},
+                                         margin=(0, 10)),
                            margin=(2, 0))
                  for caption, latex in EQUATIONS]
         half = len(items) // 2

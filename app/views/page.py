@@ -87,7 +87,9 @@ class Dashboard(pn.viewable.Viewer):
             "load": ("load", lambda: LoadView(**views)),
             "equations": ("equations", EquationsView),
             "design": ("design", lambda: DesignView(**views))}
-        self._holders = {tab: pn.Column(sizing_mode="stretch_width", margin=0)
+        # On a phone a tab is never wider than the screen, whatever its desktop layout.
+        self._holders = {tab: pn.Column(sizing_mode="stretch_width", margin=0,
+                                        stylesheets=[SHRINK_CSS])
                          for tab in self._builders}
         self.downloads = [
             pn.widgets.FileDownload(callback=self._trajectory_csv, filename="trajectory.csv",

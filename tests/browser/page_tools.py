@@ -93,22 +93,25 @@ def wait_for_app(page, url: str, timeout_ms: float = 45_000) -> float:
     return elapsed
 
 
-def settle(page, quiet_ms: int = 600, timeout_ms: float = 30_000) -> None:
-    """Wait until no ColumnDataSource has changed for ``quiet_ms`` (the page is at rest)."""
+def settle(page, quiet_ms: int = 600, timeout_ms: float = 30_000,
+           names: list[str] | None = None) -> None:
+    """Wait until no ColumnDataSource (of ``names``, default all) has changed for
+    ``quiet_ms`` (the page is at rest); a playing animation changes its sources on every
+    frame, so a page that plays settles only on ``names`` it does not animate."""
     page.evaluate(
-        """([quiet, timeout]) => new Promise((resolve) => {
-          let last = JSON.stringify(window.__mpFingerprint());
+        """([quiet, timeout, names]) => new Promise((resolve) => {
+          let last = JSON.stringify(window.__mpFingerprint(names));
           let since = performance.now();
           const start = since;
           const tick = () => {
-            const now = JSON.stringify(window.__mpFingerprint());
+            const now = JSON.stringify(window.__mpFingerprint(names));
             if (now !== last) { last = now; since = performance.now(); }
             if (performance.now() - since >= quiet || performance.now() - start >= timeout)
               resolve(true);
             else setTimeout(tick, 50);
           };
           tick();
-        })""", [quiet_ms, timeout_ms])
+        })""", [quiet_ms, timeout_ms, names or []])
 
 
 def data_sources(page, names: list[str] | None = None) -> dict:

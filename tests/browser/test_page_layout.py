@@ -304,6 +304,20 @@ def test_the_phone_layout(browser, app_url):
         context.close()
 
 
+@pytest.mark.parametrize("tab", ["array", "equations", "design"])
+def test_no_tab_scrolls_sideways_on_a_phone(browser, app_url, tab):
+    """Opened from a link on a phone, every tab fits the screen's width: its own layout
+    stacks (the Design tab's inputs, figures and readouts; long equations scroll within
+    their line), and the hidden tabs do not widen the page."""
+    context, page = _new_page(browser, PHONE)
+    try:
+        _open(page, f"{app_url}?tab={tab}")
+        width = page.evaluate("() => document.scrollingElement.scrollWidth")
+        assert width <= PHONE["width"], f"the {tab} tab scrolls sideways ({width} px wide)"
+    finally:
+        context.close()
+
+
 # ---------------------------------------------------------------------------- screenshots
 
 def _shots_dir() -> Path:
