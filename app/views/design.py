@@ -37,7 +37,7 @@ from .widgets import caption, look
 #: one below the other.
 DESIGN_ROW_CSS = f"""
 :host {{ width: 100% !important; }}
-.design-figures {{ flex: 1 1 0 !important; min-width: 330px; }}
+.design-figures {{ flex: 1 1 0 !important; min-width: 280px; }}
 {PHONE} {{
   :host {{ flex-direction: column !important; min-width: 0 !important; max-width: 100vw;
            height: auto !important; flex: 0 0 auto !important; }}

@@ -20,6 +20,7 @@ from . import page_tools as pt
 
 pytestmark = [pytest.mark.browser, pytest.mark.timeout(240)]
 
+LAPTOP = {"width": 1280, "height": 720}
 FULL_HD = {"width": 1920, "height": 1080}
 PHONE = {"width": 390, "height": 844}
 #: tab key -> (tab-bar label, the figures the tab shows)
@@ -304,16 +305,18 @@ def test_the_phone_layout(browser, app_url):
         context.close()
 
 
-@pytest.mark.parametrize("tab", ["array", "equations", "design"])
-def test_no_tab_scrolls_sideways_on_a_phone(browser, app_url, tab):
-    """Opened from a link on a phone, every tab fits the screen's width: its own layout
-    stacks (the Design tab's inputs, figures and readouts; long equations scroll within
-    their line), and the hidden tabs do not widen the page."""
-    context, page = _new_page(browser, PHONE)
+@pytest.mark.parametrize("tab, viewport", [("array", PHONE), ("equations", PHONE),
+                                           ("design", PHONE), ("design", LAPTOP)])
+def test_no_tab_scrolls_sideways(browser, app_url, tab, viewport):
+    """Opened from a link, a tab fits the screen's width: on a phone its own layout stacks
+    (the Design tab's inputs, figures and readouts; long equations scroll within their
+    line) and the hidden tabs do not widen the page; at 1280 x 720 the Design tab's
+    figures take the width its inputs and readouts leave."""
+    context, page = _new_page(browser, viewport)
     try:
         _open(page, f"{app_url}?tab={tab}")
         width = page.evaluate("() => document.scrollingElement.scrollWidth")
-        assert width <= PHONE["width"], f"the {tab} tab scrolls sideways ({width} px wide)"
+        assert width <= viewport["width"], f"the {tab} tab scrolls sideways ({width} px wide)"
     finally:
         context.close()
 
