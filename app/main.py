@@ -9,6 +9,7 @@ A client (address) with several pages built that no browser has opened yet gets 
 so a burst of page requests must not stall the other sessions and the health check.
 """
 import panel as pn
+from bokeh.models import CustomJS
 
 from app.app_hooks import guard_query_parsing
 from app.pages import page_gate, schedule_release
@@ -20,12 +21,19 @@ TITLE = "Micropillar friction explorer"
 pn.extension("mathjax", notifications=False)
 
 
-def busy_page():
-    reload = pn.widgets.Button(name="Reload", button_type="primary", width=120)
+#: The busy page reloads itself after a random 3-6 s (spread, so a class that was turned
+#: away at once does not come back at once).
+AUTO_RELOAD_JS = "setTimeout(() => window.location.reload(), 3000 + 3000 * Math.random());"
+
+
+def busy_page(doc=None):
+    reload = pn.widgets.Button(name="Reload now", button_type="primary", width=120)
     reload.js_on_click(code="window.location.reload()")
+    if doc is not None:
+        doc.js_on_event("document_ready", CustomJS(code=AUTO_RELOAD_JS))
     return pn.Column(pn.pane.Markdown(
         "### The server is busy\n\nIt is still building several pages for your address "
-        "that have not been opened yet. Please reload this page in a few seconds."),
+        "that have not been opened yet. This page reloads itself in a few seconds."),
         reload, css_classes=["busy-page"])
 
 
@@ -35,12 +43,11 @@ def serve() -> None:
     doc, gate, client = pn.state.curdoc, page_gate(), client_address()
     page_id, release = id(doc), schedule_release
     if doc is not None and not gate.admit(client, page_id):
-        busy_page().servable(title=f"{TITLE} (busy)")
+        busy_page(doc).servable(title=f"{TITLE} (busy)")
         return
     if doc is not None:
         pn.state.onload(lambda: gate.opened(client, page_id))
-        doc.on_session_destroyed(lambda _context: (gate.opened(client, page_id),
-                                                   release()))
+        doc.on_session_destroyed(lambda _context: (gate.gone(client, page_id), release()))
     Dashboard.from_session().servable(title=TITLE)
     if doc is not None:
         gate.built(client, page_id)

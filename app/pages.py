@@ -15,26 +15,49 @@ import time
 #: holds the server's one event loop for a few tenths of a second, so a burst of page
 #: requests that are never opened (a script fetching URLs) would stall every session and
 #: the liveness endpoint; two bound that to about a second. A class behind one address
-#: (a NAT) opening at once gets some busy pages and reloads them.
+#: (a NAT) opening at once gets some busy pages, which reload themselves.
 MAX_UNOPENED_PAGES = 2
 #: Seconds after which a page that was never opened stops counting (a health check's
 #: session, a closed tab).
 UNOPENED_PAGE_S = 10.0
+#: A client whose pages browsers do open earns one more unopened page for each page opened
+#: in the last ``CREDIT_WINDOW_S`` seconds, up to ``MAX_CREDIT``: a class behind one
+#: address (a school's NAT, a proxy) gets in within a few rounds of reloads (2, 4, 8, ...
+#: pages at once), while a client that never opens its pages stays at two.
+CREDIT_WINDOW_S = 120.0
+MAX_CREDIT = 16
 
 
 class PageGate:
     """Per client: the pages built that no browser has opened yet (``admit``, ``opened``).
 
-    A class behind one address opens its pages one after another, each soon after it
-    was built, so it stays under the bound; a burst of page requests that are never
-    opened does not.
+    A class behind one address opens its pages soon after they are built, and each page
+    opened raises the client's bound (``allowance``) for a while; a burst of page requests
+    that are never opened stays at ``max_unopened``.
     """
 
     def __init__(self, max_unopened: int = MAX_UNOPENED_PAGES,
-                 window_s: float = UNOPENED_PAGE_S):
+                 window_s: float = UNOPENED_PAGE_S, credit_window_s: float = CREDIT_WINDOW_S,
+                 max_credit: int = MAX_CREDIT):
         self.max_unopened, self.window_s = max_unopened, window_s
+        self.credit_window_s, self.max_credit = credit_window_s, max_credit
         self._pages: dict = {}  # client -> {page id: monotonic time built}
+        self._opens: dict = {}  # client -> [monotonic times its pages were opened]
         self._lock = threading.Lock()
+
+    def allowance(self, client) -> int:
+        """How many unopened pages ``client`` may have: two, plus its recent opens."""
+        now = time.monotonic()
+        with self._lock:
+            return self._allowance(client, now)
+
+    def _allowance(self, client, now: float) -> int:
+        opens = [t for t in self._opens.get(client, ()) if now - t < self.credit_window_s]
+        if opens:
+            self._opens[client] = opens[-self.max_credit:]
+        else:
+            self._opens.pop(client, None)
+        return self.max_unopened + min(len(opens), self.max_credit)
 
     def admit(self, client, page) -> bool:
         """Whether ``client`` may have one more page built (then ``page`` counts)."""
@@ -42,7 +65,7 @@ class PageGate:
         with self._lock:
             pages = {p: t for p, t in self._pages.get(client, {}).items()
                      if now - t < self.window_s}
-            admitted = len(pages) < self.max_unopened
+            admitted = len(pages) < self._allowance(client, now)
             if admitted:
                 pages[page] = now
             if pages:
@@ -59,13 +82,24 @@ class PageGate:
                 pages[page] = time.monotonic()
 
     def opened(self, client, page) -> None:
-        """A browser has ``page`` (or it is gone): it no longer counts."""
+        """A browser has ``page``: it no longer counts, and the client earns credit."""
         with self._lock:
-            pages = self._pages.get(client)
-            if pages is not None:
-                pages.pop(page, None)
-                if not pages:
-                    del self._pages[client]
+            if self._forget(client, page):
+                self._opens.setdefault(client, []).append(time.monotonic())
+
+    def gone(self, client, page) -> None:
+        """``page``'s session ended (opened or not): it no longer counts."""
+        with self._lock:
+            self._forget(client, page)
+
+    def _forget(self, client, page) -> bool:
+        pages = self._pages.get(client)
+        if pages is None or page not in pages:
+            return False
+        del pages[page]
+        if not pages:
+            del self._pages[client]
+        return True
 
     def unopened(self, client) -> int:
         now = time.monotonic()

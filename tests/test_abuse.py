@@ -29,6 +29,43 @@ def test_a_client_gets_a_bounded_number_of_unopened_pages():
     assert gate.unopened("10.0.0.1") == 2 and gate.unopened("10.0.0.2") == 1
 
 
+def test_a_client_whose_pages_are_opened_earns_a_larger_bound():
+    """A class behind one address: each page a browser opens lets one more be built at
+    once (up to the cap); pages that end unopened earn nothing; the credit expires."""
+    gate = PageGate(max_unopened=2, window_s=60, credit_window_s=0.5, max_credit=3)
+    assert gate.admit("nat", 1) and gate.admit("nat", 2) and not gate.admit("nat", 3)
+    gate.opened("nat", 1)
+    gate.opened("nat", 2)
+    assert gate.allowance("nat") == 4
+    assert all(gate.admit("nat", p) for p in (3, 4, 5, 6)) and not gate.admit("nat", 7)
+    for p in (3, 4, 5, 6):
+        gate.opened("nat", p)
+    assert gate.allowance("nat") == 5  # capped at two plus max_credit
+    gate.opened("nat", 3)  # already counted: a second call earns nothing
+    gate.gone("script", 99)
+    assert gate.admit("script", 10) and gate.admit("script", 11)
+    gate.gone("script", 10)  # its session ended unopened
+    assert gate.allowance("script") == 2
+    time.sleep(0.6)
+    assert gate.allowance("nat") == 2 and gate._opens == {}
+
+
+def test_the_busy_page_reloads_itself():
+    import re
+
+    from bokeh.document import Document
+    from bokeh.embed import file_html
+    from bokeh.resources import CDN
+
+    import app.main as page_script  # builds a page outside a server: no gate involved
+
+    doc = Document()
+    doc.add_root(page_script.busy_page(doc).get_root(doc))
+    html = file_html(doc, CDN)
+    assert re.search(r'"document_ready",\[\{[^]]*"CustomJS"[^]]*window\.location\.reload\(\)',
+                     html), "the busy page does not reload itself when the browser has it"
+
+
 def test_a_page_never_opened_stops_counting_after_the_window():
     gate = PageGate(max_unopened=1, window_s=0.2)
     assert gate.admit(None, 1) and not gate.admit(None, 2)
