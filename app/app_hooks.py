@@ -1,13 +1,14 @@
 """Server hooks (``panel serve app`` runs ``on_server_loaded`` once, before any request).
 
 * The compiled kernel is loaded and the worker processes started, so the first page is as
-  quick as the next.
+  quick as the next; on a first start after installing (nothing in numba's cache) that
+  compile runs in the background while pages are served and say so.
 * Panel's reader of the page address is guarded (``app.urlstate.panel_query``): a value it
   cannot convert, such as 4301 digits, would otherwise stop the page from syncing.
 * Every response carries ``SECURITY_HEADERS``: no other site may frame the dashboard
   (clickjacking), and browsers take each file as the type the server declares.
 """
-from app.jobs import warm_up
+from app.jobs import start_warm_up
 from app.urlstate import panel_query
 
 #: Headers added to every HTTP response of the server (pages, scripts, websocket upgrades,
@@ -52,4 +53,4 @@ def add_security_headers() -> None:
 def on_server_loaded(server_context):
     guard_query_parsing()
     add_security_headers()
-    warm_up()
+    start_warm_up()

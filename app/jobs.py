@@ -249,8 +249,32 @@ def work_pool() -> WorkPool:
         return _POOL
 
 
+_SOLVER_READY = threading.Event()
+
+
+def solver_ready() -> bool:
+    """Whether this server process has the compiled kernel (``warm_up`` finished)."""
+    return _SOLVER_READY.is_set()
+
+
 def warm_up() -> None:
     """Load the compiled kernel here and start every worker (each loads it too)."""
     from .worker import warm
     warm()
+    _SOLVER_READY.set()
     work_pool().warm_up()
+
+
+def start_warm_up() -> bool:
+    """``warm_up`` at once when numba's cache holds the kernel (about a second), else in
+    a background thread, so a first start after installing (a compile of ~10-20 s) serves
+    pages at once; they say the solver is being prepared. True if in the background."""
+    from model._kernel import COLD_COMPILE_SECONDS, cache_is_cold
+
+    if not cache_is_cold():
+        warm_up()
+        return False
+    log.warning("preparing the solver (first start: compiling, ~%d s); pages are served "
+                "meanwhile", COLD_COMPILE_SECONDS)
+    threading.Thread(target=warm_up, name="solver-warm-up", daemon=True).start()
+    return True

@@ -18,6 +18,7 @@ import panel as pn
 import param
 
 from ..export import sweep_csv, trajectory_csv
+from ..jobs import solver_ready
 from ..results import SessionResults
 from ..state import URL_KEYS, ExplorerState
 from ..texts import HELP
@@ -35,6 +36,9 @@ from .polar import PolarView
 from .readouts import HeadlineView, ReadoutsView
 from .support import SupportView
 from .widgets import caption, look
+
+PREPARING = ("**Preparing the solver** (first start after installing: compiling, about "
+             "10-20 s). The plots fill in when it is ready.")
 
 #: The tab bar: what each tab shows, and the paper's figures it draws (tooltip).
 TAB_TITLES = ("One support", "Array", "Orientation (polar)", "Regime map", "Load", "Equations",
@@ -114,6 +118,17 @@ class Dashboard(pn.viewable.Viewer):
                                    sizing_mode="stretch_width",
                                    stylesheets=[":host(.alert) {padding: 4px 10px;}",
                                                 "p {margin: 0;}"])
+        # A first start after installing compiles the solver in the background: say so
+        # until it is ready (the plots fill in then).
+        self.preparing = pn.pane.Alert(PREPARING, alert_type="info", visible=not solver_ready(),
+                                       css_classes=["page-preparing"], margin=(2, 10),
+                                       sizing_mode="stretch_width",
+                                       stylesheets=[":host(.alert) {padding: 4px 10px;}",
+                                                    "p {margin: 0;}"])
+        self._preparing_check = None
+        if self.preparing.visible and pn.state.curdoc is not None \
+                and pn.state.curdoc.session_context is not None:
+            self._preparing_check = pn.state.add_periodic_callback(self._check_solver, 500)
         self.dismiss = pn.widgets.Button(**caption("Dismiss"), visible=False, width=80,
                                          css_classes=["notice-dismiss"], margin=(4, 4))
         self.dismiss.on_click(self._dismiss)
@@ -187,6 +202,13 @@ class Dashboard(pn.viewable.Viewer):
         self.alert.alert_type = "danger" if error else "warning"
         self.alert.object = "  \n".join(self.messages)
         self.alert.visible = self.dismiss.visible = bool(self.messages)
+
+    def _check_solver(self) -> None:
+        if solver_ready():
+            self.preparing.visible = False
+            if self._preparing_check is not None:
+                self._preparing_check.stop()
+                self._preparing_check = None
 
     def _dismiss(self, _event) -> None:
         self.state.notice = ""
@@ -275,7 +297,8 @@ class Dashboard(pn.viewable.Viewer):
             scroll=True, styles={"max-height": "calc(100vh - 50px)"},
             stylesheets=[SIDEBAR_CSS])
         self.sidebar.param.watch(self._size_sidebar, "collapsed")
-        main = pn.Column(pn.Row(self.alert, self.dismiss, sizing_mode="stretch_width",
+        main = pn.Column(self.preparing,
+                         pn.Row(self.alert, self.dismiss, sizing_mode="stretch_width",
                                 stylesheets=[SHRINK_CSS]),
                          self.headline, self.tabs, sizing_mode="stretch_width", margin=0,
                          css_classes=["main-area"], stylesheets=[SHRINK_CSS])
