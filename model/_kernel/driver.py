@@ -34,6 +34,7 @@ SCAN_POINTS = 8
 # PI step-size control (Gustafsson; Hairer & Wanner I, IV.2): the explicit pair uses
 # err^-(1/5 - 0.75 BETA) * err_old^BETA, which damps the accept/reject oscillation.
 PI_BETA = 0.04
+LOG_EN_FLOOR = math.log(1e-4)  # err_old is taken as at least 1e-4
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -244,7 +245,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
     nonstiff = 0
     easy = 0
     last_rejected = False
-    en_old = 1e-4
+    log_en_old = LOG_EN_FLOOR
     nonfinite = False
     finishing = False
     fell_back = False
@@ -293,7 +294,8 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
             rhs(ynew, P, fnew)
             stats[ST_RHS] += 1
         else:
-            copy_into(fnew, K[6])
+            for i in range(n):
+                fnew[i] = K[6, i]
         if finishing:
             status = OK
         else:
@@ -336,19 +338,19 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
         t += h
         copy_into(y, ynew)
         copy_into(f, fnew)
-        r_now = math.sqrt(y[X] * y[X] + y[Y] * y[Y])
-        r_min = min(r_min, r_now)
-        r_max = max(r_max, r_now)
+        r_min = min(r_min, r_new)
+        r_max = max(r_max, r_new)
         if record:
             nodes, n_nodes, stride = _record(nodes, n_nodes, stride, stats[ST_ACC], False, y, f)
+        log_en = math.log(max(en, 1e-300))
         if en == 0.0:
             fac = maxfac
         elif implicit:
-            fac = min(maxfac, SAFETY * math.exp(-expo * math.log(en)))
+            fac = min(maxfac, SAFETY * math.exp(-expo * log_en))
         else:
             fac = min(maxfac, max(0.2, SAFETY * math.exp(
-                -(expo - 0.75 * PI_BETA) * math.log(en) + PI_BETA * math.log(en_old))))
-        en_old = max(en, 1e-4)
+                -(expo - 0.75 * PI_BETA) * log_en + PI_BETA * log_en_old)))
+        log_en_old = max(log_en, LOG_EN_FLOOR)
         if last_rejected:
             fac = min(1.0, fac)
         last_rejected = False

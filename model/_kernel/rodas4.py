@@ -103,10 +103,12 @@ def step(y, f, h, P, J, M, piv, Kr, ynew, err, ystage, b):
     Returns False when I/(h gamma) - J is singular (the caller rejects the step).
     """
     hg = h * GAMMA
+    inv_h = 1.0 / h
+    inv_hg = 1.0 / hg
     for i in range(N_MOTION):
         for j in range(N_MOTION):
             M[i, j] = -J[i, j]
-        M[i, i] += 1.0 / hg
+        M[i, i] += inv_hg
     if not lu_factor(M, piv):
         return False
     for s in range(6):
@@ -123,7 +125,7 @@ def step(y, f, h, P, J, M, piv, Kr, ynew, err, ystage, b):
                 acc = 0.0
                 for j in range(s):
                     acc += C[s, j] * Kr[j, i]
-                b[i] += acc / h
+                b[i] += acc * inv_h
         _solve_stage(M, piv, J, hg, b, Kr[s])
     for i in range(N_STATE):
         ynew[i] = ystage[i] + Kr[5, i]
