@@ -9,7 +9,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .rhs import copy_into, rhs
+from .rhs import rhs
 from .slots import ERROR_SLOTS, N_ERROR, N_MOTION, N_STATE
 
 ORDER = 5
@@ -54,31 +54,33 @@ def step(y, f, h, P, K, ynew, err, ystage):
     formed for the motion slots alone; the quadratures and tau enter ynew only.
     """
     m = N_MOTION
-    copy_into(K[0], f)
-    k1, k2, k3, k4, k5, k6, k7 = K[0], K[1], K[2], K[3], K[4], K[5], K[6]
-    for i in range(m):
-        ystage[i] = y[i] + h * A21 * k1[i]
-    rhs(ystage, P, k2)
-    for i in range(m):
-        ystage[i] = y[i] + h * (A31 * k1[i] + A32 * k2[i])
-    rhs(ystage, P, k3)
-    for i in range(m):
-        ystage[i] = y[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i])
-    rhs(ystage, P, k4)
-    for i in range(m):
-        ystage[i] = y[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i])
-    rhs(ystage, P, k5)
-    for i in range(m):
-        ystage[i] = y[i] + h * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i]
-                                + A65 * k5[i])
-    rhs(ystage, P, k6)
+    # The stages are read as K[j, i]: row views cost ~10 % of a step.
     for i in range(N_STATE):
-        ynew[i] = y[i] + h * (B1 * k1[i] + B3 * k3[i] + B4 * k4[i] + B5 * k5[i] + B6 * k6[i])
-    rhs(ynew, P, k7)
+        K[0, i] = f[i]
+    for i in range(m):
+        ystage[i] = y[i] + h * A21 * K[0, i]
+    rhs(ystage, P, K[1])
+    for i in range(m):
+        ystage[i] = y[i] + h * (A31 * K[0, i] + A32 * K[1, i])
+    rhs(ystage, P, K[2])
+    for i in range(m):
+        ystage[i] = y[i] + h * (A41 * K[0, i] + A42 * K[1, i] + A43 * K[2, i])
+    rhs(ystage, P, K[3])
+    for i in range(m):
+        ystage[i] = y[i] + h * (A51 * K[0, i] + A52 * K[1, i] + A53 * K[2, i] + A54 * K[3, i])
+    rhs(ystage, P, K[4])
+    for i in range(m):
+        ystage[i] = y[i] + h * (A61 * K[0, i] + A62 * K[1, i] + A63 * K[2, i] + A64 * K[3, i]
+                                + A65 * K[4, i])
+    rhs(ystage, P, K[5])
+    for i in range(N_STATE):
+        ynew[i] = y[i] + h * (B1 * K[0, i] + B3 * K[2, i] + B4 * K[3, i] + B5 * K[4, i]
+                              + B6 * K[5, i])
+    rhs(ynew, P, K[6])
     for k in range(N_ERROR):
         i = ERROR_SLOTS[k]
-        err[i] = h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i]
-                      + E7 * k7[i])
+        err[i] = h * (E1 * K[0, i] + E3 * K[2, i] + E4 * K[3, i] + E5 * K[4, i] + E6 * K[5, i]
+                      + E7 * K[6, i])
 
 
 @njit(cache=True, error_model="numpy", inline="always")

@@ -1,12 +1,13 @@
 """Adaptive integration of one contact until the exit event of Eq. (9).
 
-Methods: 1 = explicit Dormand-Prince 5(4), 2 = implicit Rodas4, 0 = automatic:
+Methods: 1 = explicit DOP853 (Dormand-Prince 8(5,3)), 2 = implicit Rodas4, 0 = automatic:
 start explicit, switch to Rodas4 when the stiffness detector of Hairer & Wanner
 (IV.2) fires repeatedly, and back when h ||J|| shows the explicit pair would be
 stable at the current step.
 
 The exit is located on the dense output of the accepted step (first crossing of
-s(tau) = L0, scanning the step when s may cross and re-cross), then the step is
+s(tau) = L0, scanning the step when s may cross and re-cross: DOP853's 7th-order
+output, cubic Hermite after a Rodas4 step), then the step is
 retaken exactly to the located time, so the exit state has the method's full
 accuracy rather than the interpolant's.
 """
@@ -15,7 +16,7 @@ import math
 import numpy as np
 from numba import njit
 
-from . import dopri5, rodas4
+from . import dop853, rodas4
 from .rhs import copy_into, exit_gap, jacobian, rhs
 from .slots import (ERROR_SLOTS, N_ERROR, N_MOTION, N_STATE, N_STATS, NONFINITE, OK, ST_ACC,
                     ST_ACC_EXPL, ST_ACC_IMPL, ST_JAC, ST_LU, ST_REJ, ST_RHS, ST_SWITCH,
@@ -23,7 +24,7 @@ from .slots import (ERROR_SLOTS, N_ERROR, N_MOTION, N_STATE, N_STATS, NONFINITE,
                     X, Y)
 
 SAFETY = 0.9
-STIFF_HLAMBDA = 3.25  # DP5 stability boundary on the negative real axis (~3.3)
+STIFF_HLAMBDA = 6.1  # DOP853 stability boundary on the negative real axis (Hairer's DOP853)
 STIFF_COUNT = 15
 NONSTIFF_HNORM = 2.0  # back to explicit when h ||J||_inf stays below this
 NONSTIFF_COUNT = 5
@@ -32,8 +33,9 @@ NONSTIFF_COUNT = 5
 PIVOT_EXPLICIT = 1e-3
 SCAN_POINTS = 8
 # PI step-size control (Gustafsson; Hairer & Wanner I, IV.2): the explicit pair uses
-# err^-(1/5 - 0.75 BETA) * err_old^BETA, which damps the accept/reject oscillation.
+# err^-(1/8 - 0.75 BETA) * err_old^BETA, which damps the accept/reject oscillation.
 PI_BETA = 0.04
+LOG_EN_FLOOR = math.log(1e-4)  # err_old is taken as at least 1e-4
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -90,19 +92,17 @@ def _hermite(y0, f0, y1, f1, h, th, i):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _gap_at(th, h, y, f, ynew, fnew, K, implicit, P):
-    if implicit:
-        x = _hermite(y, f, ynew, fnew, h, th, X)
-        tau = _hermite(y, f, ynew, fnew, h, th, TAU)
-    else:
-        x = dopri5.dense_component(y, K, h, th, X)
-        tau = dopri5.dense_component(y, K, h, th, TAU)
+def _gap_at(th, h, y, f, ynew, fnew, P):
+    x = _hermite(y, f, ynew, fnew, h, th, X)
+    tau = _hermite(y, f, ynew, fnew, h, th, TAU)
     return exit_gap(tau, x, P)
 
 
 @njit(cache=True, error_model="numpy")
-def _locate_exit(h, y, f, ynew, fnew, K, implicit, P):
-    """First theta in (0, 1] where the exit gap crosses zero, or -1 if none.
+def _locate_exit(h, y, f, ynew, fnew, P):
+    """First theta in (0, 1] where the exit gap crosses zero after a Rodas4 step, or -1.
+
+    (``dop853.locate_exit`` does the same on the explicit pair's dense output.)
 
     Scans the step when s(tau) ends above L0 or may have a maximum inside
     (v_x crosses 1), then refines the first bracket by the Illinois method.
@@ -117,7 +117,7 @@ def _locate_exit(h, y, f, ynew, fnew, K, implicit, P):
     ghi = 0.0
     for k in range(1, SCAN_POINTS + 1):
         th = k / SCAN_POINTS
-        g = g1 if k == SCAN_POINTS else _gap_at(th, h, y, f, ynew, fnew, K, implicit, P)
+        g = g1 if k == SCAN_POINTS else _gap_at(th, h, y, f, ynew, fnew, P)
         if g >= 0.0:
             hi = th
             ghi = g
@@ -133,7 +133,7 @@ def _locate_exit(h, y, f, ynew, fnew, K, implicit, P):
         th = (lo * ghi - hi * glo) / (ghi - glo)
         if not (lo < th < hi):
             th = 0.5 * (lo + hi)
-        g = _gap_at(th, h, y, f, ynew, fnew, K, implicit, P)
+        g = _gap_at(th, h, y, f, ynew, fnew, P)
         if g >= 0.0:
             hi, ghi = th, g
             if side == 1:
@@ -223,14 +223,16 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
     err = np.empty(n)
     ystage = np.empty(n)
     b = np.empty(n)
-    K = np.zeros((7, n))
+    K = np.zeros((dop853.N_ROWS, n))
+    FX = np.empty(dop853.N_POLY)
+    FT = np.empty(dop853.N_POLY)
     Kr = np.zeros((6, n))
     J = np.zeros((n, N_MOTION))
     M = np.empty((N_MOTION, N_MOTION))
     piv = np.zeros(N_MOTION, np.int64)
     rhs(y, P, f)
     implicit = method == 2
-    h = _initial_step(y, f, P, rtol, atol, 4 if implicit else 5, ystage, fnew)
+    h = _initial_step(y, f, P, rtol, atol, 4 if implicit else 8, ystage, fnew)
     stats[ST_RHS] += 2
     nodes = np.empty((256 if record else 1, N_NODE_COLS))
     n_nodes = 0
@@ -244,7 +246,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
     nonstiff = 0
     easy = 0
     last_rejected = False
-    en_old = 1e-4
+    log_en_old = LOG_EN_FLOOR
     nonfinite = False
     finishing = False
     fell_back = False
@@ -277,10 +279,10 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
             expo = 1.0 / rodas4.ORDER
             maxfac = 6.0
         else:
-            dopri5.step(y, f, h, P, K, ynew, err, ystage)
-            stats[ST_RHS] += 6
-            en = _err_norm(err, y, ynew, rtol, atol)
-            expo = 1.0 / dopri5.ORDER
+            dop853.step(y, f, h, P, K, ynew, ystage)
+            stats[ST_RHS] += 12
+            en = dop853.error_norm(h, K, y, ynew, rtol, atol)
+            expo = 1.0 / dop853.ORDER
             maxfac = 10.0
         if en > 1.0 and not finishing:
             stats[ST_REJ] += 1
@@ -293,11 +295,16 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
             rhs(ynew, P, fnew)
             stats[ST_RHS] += 1
         else:
-            copy_into(fnew, K[6])
+            for i in range(n):
+                fnew[i] = K[dop853.N_STAGES, i]
         if finishing:
             status = OK
         else:
-            th = _locate_exit(h, y, f, ynew, fnew, K, implicit, P)
+            if implicit:
+                th = _locate_exit(h, y, f, ynew, fnew, P)
+            else:
+                th, extra = dop853.locate_exit(h, y, ynew, K, P, ystage, SCAN_POINTS, FX, FT)
+                stats[ST_RHS] += extra
             if th > 0.0:
                 # Retake this step exactly to the located exit time.
                 h = th * h
@@ -318,7 +325,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
                 if easy >= NONSTIFF_COUNT:
                     implicit = False
                     switched = True
-            elif dopri5.stiffness_ratio(h, K, ynew, ystage) > STIFF_HLAMBDA:
+            elif dop853.stiffness_ratio(h, K, ynew, ystage) > STIFF_HLAMBDA:
                 nonstiff = 0
                 stiff += 1
                 if stiff >= STIFF_COUNT:
@@ -336,19 +343,19 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
         t += h
         copy_into(y, ynew)
         copy_into(f, fnew)
-        r_now = math.sqrt(y[X] * y[X] + y[Y] * y[Y])
-        r_min = min(r_min, r_now)
-        r_max = max(r_max, r_now)
+        r_min = min(r_min, r_new)
+        r_max = max(r_max, r_new)
         if record:
             nodes, n_nodes, stride = _record(nodes, n_nodes, stride, stats[ST_ACC], False, y, f)
+        log_en = math.log(max(en, 1e-300))
         if en == 0.0:
             fac = maxfac
         elif implicit:
-            fac = min(maxfac, SAFETY * math.exp(-expo * math.log(en)))
+            fac = min(maxfac, SAFETY * math.exp(-expo * log_en))
         else:
             fac = min(maxfac, max(0.2, SAFETY * math.exp(
-                -(expo - 0.75 * PI_BETA) * math.log(en) + PI_BETA * math.log(en_old))))
-        en_old = max(en, 1e-4)
+                -(expo - 0.75 * PI_BETA) * log_en + PI_BETA * log_en_old)))
+        log_en_old = max(log_en, LOG_EN_FLOOR)
         if last_rejected:
             fac = min(1.0, fac)
         last_rejected = False

@@ -40,7 +40,9 @@ C[5, 0], C[5, 1], C[5, 2], C[5, 3], C[5, 4] = (8.083246795921522, -7.98113298806
 
 @njit(cache=True, error_model="numpy")
 def lu_factor(M, piv):
-    """In-place LU with partial pivoting of the small dense matrix M; False if singular."""
+    """In-place LU with partial pivoting of the small dense matrix M; False if singular.
+
+    The diagonal of U is stored inverted (``lu_solve`` multiplies by it)."""
     n = M.shape[0]
     for k in range(n):
         p = k
@@ -55,8 +57,10 @@ def lu_factor(M, piv):
         if p != k:
             for j in range(n):
                 M[k, j], M[p, j] = M[p, j], M[k, j]
+        inv = 1.0 / M[k, k]
+        M[k, k] = inv
         for i in range(k + 1, n):
-            M[i, k] /= M[k, k]
+            M[i, k] *= inv
             for j in range(k + 1, n):
                 M[i, j] -= M[i, k] * M[k, j]
     return True
@@ -64,7 +68,7 @@ def lu_factor(M, piv):
 
 @njit(cache=True, error_model="numpy", inline="always")
 def lu_solve(M, piv, b):
-    """Solve in place with the factors of ``lu_factor``.
+    """Solve in place with the factors of ``lu_factor`` (its diagonal holds 1/U_kk).
 
     ``lu_factor`` swaps whole rows (the multipliers of earlier columns too), so it
     factors P M = L U: every row swap is applied to b before the forward substitution.
@@ -80,7 +84,7 @@ def lu_solve(M, piv, b):
     for k in range(n - 1, -1, -1):
         for j in range(k + 1, n):
             b[k] -= M[k, j] * b[j]
-        b[k] /= M[k, k]
+        b[k] *= M[k, k]
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -103,10 +107,12 @@ def step(y, f, h, P, J, M, piv, Kr, ynew, err, ystage, b):
     Returns False when I/(h gamma) - J is singular (the caller rejects the step).
     """
     hg = h * GAMMA
+    inv_h = 1.0 / h
+    inv_hg = 1.0 / hg
     for i in range(N_MOTION):
         for j in range(N_MOTION):
             M[i, j] = -J[i, j]
-        M[i, i] += 1.0 / hg
+        M[i, i] += inv_hg
     if not lu_factor(M, piv):
         return False
     for s in range(6):
@@ -123,7 +129,7 @@ def step(y, f, h, P, J, M, piv, Kr, ynew, err, ystage, b):
                 acc = 0.0
                 for j in range(s):
                     acc += C[s, j] * Kr[j, i]
-                b[i] += acc / h
+                b[i] += acc * inv_h
         _solve_stage(M, piv, J, hg, b, Kr[s])
     for i in range(N_STATE):
         ynew[i] = ystage[i] + Kr[5, i]
