@@ -5,6 +5,7 @@ headless Chromium; a teacher can open the saved HTML file offline.
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 from bokeh.document import Document
@@ -121,7 +122,14 @@ ICON = ("<link rel=\"icon\" href=\"data:image/svg+xml,"
         "%3Crect x='6' y='5' width='4' height='9' fill='%231f77b4'/%3E%3C/svg%3E\">")
 
 
+#: A script that a saved file cannot load: a path relative to a server. Bokeh lists the
+#: external files declared by every imported model class, so once Panel is imported its
+#: module shim (``static/extensions/panel/...``) would be asked for beside the file; the
+#: page's own models are Bokeh's and need none of them.
+_SERVER_SCRIPT = re.compile(r'<script src="(?![a-z]+:)[^"]*"></script>\n?')
+
+
 def page_html(doc, title: str | None = None) -> str:
     """Self-contained HTML (Bokeh's JavaScript inline, an inline icon: works offline)."""
-    html = file_html(doc, INLINE, title or doc.title)
+    html = _SERVER_SCRIPT.sub("", file_html(doc, INLINE, title or doc.title))
     return html.replace("<head>", "<head>\n    " + ICON, 1)
