@@ -6,7 +6,8 @@
 * Panel's reader of the page address is guarded (``app.urlstate.panel_query``): a value it
   cannot convert, such as 4301 digits, would otherwise stop the page from syncing.
 * Every response carries ``SECURITY_HEADERS``: no other site may frame the dashboard
-  (clickjacking), and browsers take each file as the type the server declares.
+  (clickjacking), and browsers take each file as the type the server declares. An empty
+  ``bokeh-session-id`` in the address is dropped (Bokeh would answer 500).
 """
 from app.jobs import start_warm_up
 from app.urlstate import panel_query
@@ -45,9 +46,21 @@ def add_security_headers() -> None:
         reset(self)
         for name, value in SECURITY_HEADERS.items():
             self.set_header(name, value)
+        _drop_empty_session_id(self)
 
     clear._security_headers = True
     RequestHandler.clear = clear
+
+
+def _drop_empty_session_id(handler) -> None:
+    """An empty ``bokeh-session-id`` in the address (``?bokeh-session-id=``) makes Bokeh
+    raise "Session ID must not be empty" and answer 500; without it the page gets a new
+    session, as for any address without one."""
+    request = getattr(handler, "request", None)
+    for args in (getattr(request, "query_arguments", None), getattr(request, "arguments", None)):
+        if args is not None and "bokeh-session-id" in args \
+                and not any(value.strip() for value in args["bokeh-session-id"]):
+            del args["bokeh-session-id"]
 
 
 def on_server_loaded(server_context):

@@ -315,6 +315,17 @@ def test_served_app_survives_fuzzed_queries(served, pairs, raw):
     assert _tracebacks(log) == []
 
 
+@pytest.mark.slow
+@pytest.mark.parametrize("query", ["bokeh-session-id=", "bokeh-session-id=%20&k_r=0.5",
+                                   "bokeh-session-id=&bokeh-session-id="])
+def test_an_empty_session_id_gets_a_new_session(served, query):
+    """Found by the fuzzing above: Bokeh answered 500 ("Session ID must not be empty")."""
+    base, log = served
+    status, body = _get(f"{base}/app?{query}")
+    assert status == 200 and "bokeh" in body.lower(), body[-2000:]
+    assert _tracebacks(log) == []
+
+
 def _slider(sliders: dict, name: str) -> float:
     found = [value for title, value in sliders.items() if title.startswith(name)]
     assert len(found) == 1, f"no single slider titled {name!r} among {sorted(sliders)}"
