@@ -83,6 +83,25 @@ def wait_for_app(page, url: str, timeout_ms: float = 45_000) -> float:
     """
     start = time.monotonic()
     page.goto(url, wait_until="load", timeout=timeout_ms)
+    return time.monotonic() - start + wait_for_rendered(page, timeout_ms)
+
+
+def wait_for_busy_page_to_pass(page, timeout_ms: float = 90_000) -> int:
+    """While ``page`` shows the server's busy page, wait for it to reload itself (it does
+    so after 3-6 s until the server admits it); the number of busy pages seen."""
+    seen, deadline = 0, time.monotonic() + timeout_ms / 1e3
+    while "(busy)" in page.title():
+        seen += 1
+        remaining = deadline - time.monotonic()
+        if remaining <= 0:
+            raise TimeoutError("the page stayed busy")
+        page.wait_for_event("load", timeout=remaining * 1e3)
+    return seen
+
+
+def wait_for_rendered(page, timeout_ms: float = 45_000) -> float:
+    """Wait until Bokeh has rendered the open page's document and gone idle; seconds."""
+    start = time.monotonic()
     page.wait_for_function(
         "() => window.Bokeh && Bokeh.documents && Bokeh.documents.length > 0 "
         "&& Bokeh.documents[0].roots().length > 0 "
