@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import threading
 import time
-import urllib.request
 
 import pytest
 
@@ -65,20 +64,28 @@ def test_the_page_says_the_solver_is_being_prepared(monkeypatch):
 
 
 @pytest.mark.slow
-def test_a_served_first_start_answers_within_seconds(tmp_path, monkeypatch):
-    """``panel serve app`` with nothing in numba's cache: the page is served within a few
-    seconds of the server's start, while the compile goes on (the log says so)."""
-    from browser.serving import serve_app
+def test_a_served_first_start_answers_within_seconds():
+    """``panel serve app`` with nothing in numba's cache (as after installing) answers its
+    first page within seconds of its launch, while the solver compiles in the background
+    (it compiled first and answered after ~16 s before; ~3 s now on this machine).
+    Measured by ``benchmarks/cold_start.py``."""
+    import re
+    import subprocess
+    import sys
+    from pathlib import Path
 
-    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba-cache"))
-    log = tmp_path / "server.log"
-    t0 = time.perf_counter()
-    with serve_app(log, warmup=False, timeout_s=90.0) as base:
-        up = time.perf_counter() - t0
-        with urllib.request.urlopen(f"{base}/app", timeout=30) as response:
-            assert response.status == 200
-        first_page = time.perf_counter() - t0
-        text = log.read_text()
-    assert "preparing the solver" in text, text[-2000:]
-    # The server's own start (imports, Panel) is most of it; no compile before answering.
-    assert first_page - up < 5.0 and first_page < 30.0, (up, first_page)
+    root = Path(__file__).resolve().parents[1]
+    done = subprocess.run([sys.executable, str(root / "benchmarks" / "cold_start.py"),
+                           "--runs", "1", "--port", str(_free_port())], cwd=root,
+                          capture_output=True, text=True, timeout=120)
+    match = re.search(r"empty numba cache: ([0-9.]+|nan) ", done.stdout)
+    assert match, done.stdout + done.stderr
+    assert float(match.group(1)) < 10.0, done.stdout
+
+
+def _free_port() -> int:
+    import socket
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
