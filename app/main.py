@@ -27,7 +27,7 @@ AUTO_RELOAD_JS = "setTimeout(() => window.location.reload(), 3000 + 3000 * Math.
 
 
 def busy_page(doc=None):
-    reload = pn.widgets.Button(name="Reload now", button_type="primary", width=120)
+    reload = pn.widgets.Button(label="Reload now", button_type="primary", width=120)
     reload.js_on_click(code="window.location.reload()")
     if doc is not None:
         doc.js_on_event("document_ready", CustomJS(code=AUTO_RELOAD_JS))
