@@ -1,4 +1,4 @@
-"""Serving the replayed image (tests/test_docker.py): its CMD on a free loopback port,
+"""Serving the replayed image (tests/test_docker_replay.py): its CMD on a free loopback port,
 docker's SIGTERM stop, and its HEALTHCHECK command run as docker runs it."""
 from __future__ import annotations
 

@@ -3,27 +3,21 @@ disk cache that cannot be written.
 
 (a) A run that fails or exhausts its budget shows a message and the session stays usable.
     (A future that raises is covered by tests/test_app_state.py.)
-(b) A session destroyed while its work runs (the browser went away) frees that work: its
-    waiting job never starts, queued work is cancelled, a late result is dropped and the
-    result slot lets go of the session's document.
+(b) Sessions that end mid-computation: tests/test_session_end.py.
 (c) A read-only, full or impossible disk-cache folder degrades to no disk cache with one
     logged warning for a whole sweep, and the results are still computed. (Single
     ``DiskCache`` objects are covered by tests/test_cache.py.)
 """
 from __future__ import annotations
 
-import asyncio
-import concurrent.futures as cf
 import errno
 import functools
-import gc
 import logging
 import math
 import os
 import signal
 import threading
 import time
-import weakref
 from pathlib import Path
 
 import numpy as np
@@ -31,7 +25,6 @@ import pytest
 
 from app import jobs, worker
 from app import slot as slots
-from app.slot import Request, Slot
 from app.state import ExplorerState
 from fakes import InProcessPool
 from model import cache as cache_mod
@@ -137,194 +130,6 @@ def test_a_worker_that_dies_mid_run_shows_a_message_and_a_new_worker_takes_over(
     assert jobs.work_pool().executor("interactive") is not pool
     assert any("stopped" in r.getMessage() for r in caplog.records)
     state.reset()
-
-
-# ---------------------------------------------------------------------- (b) sessions that end
-
-class SessionDoc:
-    """What a ``Slot`` uses of a Bokeh server session's ``Document``, on an asyncio
-    loop; ``destroy()`` does what Bokeh does when it discards the session (the browser
-    went away): it runs the ``on_session_destroyed`` callbacks once and forgets them.
-    Any use after that is recorded in ``used_after_destroy``."""
-
-    def __init__(self, name: str):
-        from bokeh.document import Document
-
-        self.name = name
-        self.session_context = object()
-        self.destroyed = False
-        self.used_after_destroy: list[str] = []
-        self._bokeh = Document()  # registers (and checks) the destroy callbacks
-
-    def _use(self, what: str) -> None:
-        if self.destroyed:
-            self.used_after_destroy.append(what)
-
-    def add_next_tick_callback(self, callback):
-        self._use("add_next_tick_callback")
-        asyncio.get_running_loop().call_soon(callback)
-
-    def add_timeout_callback(self, callback, timeout_ms):
-        self._use("add_timeout_callback")
-        asyncio.get_running_loop().call_later(timeout_ms / 1000, callback)
-
-    def on_session_destroyed(self, *callbacks):
-        self._bokeh.on_session_destroyed(*callbacks)
-
-    @property
-    def callbacks(self):
-        return self._bokeh.callbacks
-
-    def hold(self, policy="combine"):
-        self._use("hold")
-        self._bokeh.hold(policy)
-
-    def unhold(self):
-        self._bokeh.unhold()
-
-    def destroy(self) -> None:
-        """As bokeh.application.handlers.document_lifecycle does."""
-        self.destroyed = True
-        callbacks = self._bokeh.session_destroyed_callbacks
-        self._bokeh.session_destroyed_callbacks = set()
-        for callback in callbacks:
-            callback(self.session_context)
-
-
-def test_the_fake_session_document_matches_bokeh():
-    from bokeh.document import Document
-
-    real = Document()
-    for name in ("add_next_tick_callback", "add_timeout_callback", "on_session_destroyed",
-                 "session_context", "session_destroyed_callbacks", "callbacks", "hold",
-                 "unhold"):
-        assert hasattr(real, name), name
-    assert hasattr(real.callbacks, "hold_value")
-
-
-async def _until(predicate, timeout_s: float = 30.0) -> None:
-    deadline = time.monotonic() + timeout_s
-    while not predicate():
-        assert time.monotonic() < deadline, "timed out"
-        await asyncio.sleep(0.02)
-
-
-@pytest.fixture
-def own_worker():
-    """A worker process of its own, shut down after."""
-    pool = cf.ProcessPoolExecutor(max_workers=1)
-    pool.submit(abs, -1).result(timeout=120)  # started and warm
-    yield pool
-    pool.shutdown(wait=True, cancel_futures=True)
-
-
-class Owner:
-    """What a ``Slot`` uses of its ``SessionResults``."""
-
-    LABELS = {}
-    session_id = 0
-
-    def __init__(self):
-        self.errors, self.busy = {}, set()
-
-    def _set_error(self, name, message):
-        self.errors[name] = message
-
-    def _set_busy(self, name, flag):
-        (self.busy.add if flag else self.busy.discard)(name)
-
-
-class Direct:
-    """A work pool that calls the job's function, which returns the future itself."""
-
-    def submit(self, lane, key, fn, *args, **options):
-        return fn(*args)
-
-
-def _slot(applied: list, tag: str):
-    """A slot whose requests come from ``made.next`` (a callable returning a future)."""
-    made = Slot(Owner(), tag, make=lambda: Request("any", None, made.next),
-                apply=applied.append)
-    return made
-
-
-def test_a_destroyed_session_frees_its_work(monkeypatch, own_worker):
-    """Session A asks for a long run and, while it runs, for another one; then its browser
-    goes away. Session B's request must not wait for A's second run (never started), A's
-    result must not be applied, and nothing may keep A's document alive."""
-    current = {}
-    monkeypatch.setattr(slots, "_session_doc", lambda: current.get("doc"))
-    monkeypatch.setattr(slots, "work_pool", Direct)
-    pool = own_worker
-    started, applied = [], {"A": [], "B": []}
-
-    def job(tag: str, seconds: float):
-        def start():
-            started.append(tag)
-            return pool.submit(time.sleep, seconds)
-        return start
-
-    async def scenario():
-        doc_a = SessionDoc("A")
-        current["doc"] = doc_a
-        a = _slot(applied["A"], "A")
-        a.next = job("A1", 1.5)
-        a.request()
-        await asyncio.sleep(0.3)  # A1 runs in the worker
-        a.next = job("A2", 1.5)
-        a.request()  # waits for A1 (newest wins)
-        assert started == ["A1"]
-        doc_a.destroy()
-        a.next = job("A3", 0.0)
-        a.request()  # a late event of the ended session starts nothing
-
-        doc_b = SessionDoc("B")
-        current["doc"] = doc_b
-        b = _slot(applied["B"], "B")
-        b.next = job("B1", 0.0)
-        b.request()
-        await _until(lambda: applied["B"])
-        await _until(lambda: not a._running)  # A1 has finished; A's slot is idle
-        await asyncio.sleep(0.2)
-        assert started == ["A1", "B1"]  # A2 was dropped with its session
-        assert applied["A"] == [] and applied["B"] == [None]
-        assert b.owner.errors == {"B": ""}
-        assert doc_a.used_after_destroy == [] and not doc_b.destroyed
-        return weakref.ref(doc_a), a
-
-    doc_ref, slot = asyncio.run(scenario())
-    current.clear()
-    gc.collect()
-    assert doc_ref() is None  # the slot keeps no reference to the ended session
-
-
-def test_a_destroyed_session_cancels_its_queued_work(monkeypatch):
-    """Work still waiting in a queue (behind other sessions' work) is cancelled, so the
-    worker never runs it; a delayed request is never sent."""
-    current = {}
-    monkeypatch.setattr(slots, "_session_doc", lambda: current.get("doc"))
-    monkeypatch.setattr(slots, "work_pool", Direct)
-    queued = cf.Future()  # as returned by a pool whose workers are busy elsewhere
-    started = []
-
-    async def scenario():
-        doc = SessionDoc("A")
-        current["doc"] = doc
-        slot = Slot(Owner(), "A", make=lambda: Request("any", None, lambda: queued),
-                    apply=lambda value: pytest.fail("applied after the end"))
-        slot.request()
-        later = Slot(Owner(), "L", make=lambda: Request(
-            "any", None, lambda: started.append("later") or cf.Future()),
-            apply=lambda value: pytest.fail("applied after the end"), delay_ms=50)
-        later.request()
-        await asyncio.sleep(0)
-        doc.destroy()
-        await asyncio.sleep(0.2)
-        assert queued.cancelled()
-        assert started == [] and doc.used_after_destroy == []
-        await _until(lambda: not slot._running, 5.0)
-
-    asyncio.run(scenario())
 
 
 # ---------------------------------------------------------------------- (c) disk cache
