@@ -134,11 +134,11 @@ class Dashboard(pn.viewable.Viewer):
         self.dismiss.on_click(self._dismiss)
         self.tabs = pn.Tabs(
             (TAB_TITLES[0], pn.Row(self.support, self.readouts, css_classes=["support-tab"],
-                                   sizing_mode="stretch_width", margin=0,
+                                   sizing_mode="stretch_both", margin=0,
                                    stylesheets=[SIDE_ROW_CSS])),
             *((title, self._holders[tab]) for title, tab in zip(TAB_TITLES[1:], TABS[1:])),
             active=TABS.index(state.tab), dynamic=False, css_classes=["main-tabs"],
-            sizing_mode="stretch_width", margin=0,
+            sizing_mode="stretch_both", margin=0,
             stylesheets=[".bk-header {display: none;}", SHRINK_CSS])
         # The tab bar: buttons, so the views are reachable with the keyboard (Tab, Space).
         self.tab_bar = pn.widgets.RadioButtonGroup.from_param(
@@ -300,12 +300,14 @@ class Dashboard(pn.viewable.Viewer):
         main = pn.Column(self.preparing,
                          pn.Row(self.alert, self.dismiss, sizing_mode="stretch_width",
                                 stylesheets=[SHRINK_CSS]),
-                         self.headline, self.tabs, sizing_mode="stretch_width", margin=0,
+                         self.headline, self.tabs, sizing_mode="stretch_both", margin=0,
                          css_classes=["main-area"], stylesheets=[SHRINK_CSS])
-        self._root = pn.Column(header, pn.Row(self.sidebar, main, sizing_mode="stretch_width",
+        # stretch_both down to the support's figures (which stretch both ways): said here,
+        # Panel does not override the containers with a warning at each page build.
+        self._root = pn.Column(header, pn.Row(self.sidebar, main, sizing_mode="stretch_both",
                                               css_classes=["page-body"],
                                               stylesheets=[BODY_CSS]),
-                               self.behaviour, sizing_mode="stretch_width",
+                               self.behaviour, sizing_mode="stretch_both",
                                styles=self._root_styles, css_classes=["dashboard"],
                                stylesheets=[ROOT_CSS])
         return self._root
