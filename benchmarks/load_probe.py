@@ -53,6 +53,23 @@ def tree_rss_mb(pid: int) -> dict:
     return out
 
 
+def settled_rss_mb(pid: int, step_s: float = 1.0, tolerance_mb: float = 2.0,
+                   timeout_s: float = 60.0) -> dict:
+    """``tree_rss_mb`` once the server's worker processes have started and loaded the
+    kernel: two readings ``step_s`` apart within ``tolerance_mb`` (at most ``timeout_s``).
+    The server starts its workers in the background; read at once, the baseline would
+    miss them."""
+    deadline = time.monotonic() + timeout_s
+    last = tree_rss_mb(pid)
+    while time.monotonic() < deadline:
+        time.sleep(step_s)
+        now = tree_rss_mb(pid)
+        if now["processes"] == last["processes"] and abs(now["total"] - last["total"]) <= tolerance_mb:
+            return now
+        last = now
+    return last
+
+
 def _tree_rss_proc(pid: int) -> dict:
     """``tree_rss_mb`` from /proc, where psutil is missing."""
     children: dict[int, list[int]] = {}

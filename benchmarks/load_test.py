@@ -51,7 +51,7 @@ gate may answer a busy page, which the client reloads after 1 s: that wait count
 the busy pages are counted);
 errors (failed or stalled sessions, protocol errors, tracebacks in the server log);
 the resident memory (RSS) of the server process and of its worker processes: at the
-start (the baseline: the server is up and has built one page, for its health check),
+start (the baseline: the server is up and its worker processes have loaded the kernel),
 peak during the rounds, after round 1's sessions were closed and cleaned up (the class has
 left), and after round 2; and whether the server destroyed every session (its log names
 each discarded session and counts the open ones). The classroom targets of issue 13
@@ -95,7 +95,8 @@ from load_profile import ServerProfiler, summarise  # noqa: E402
 from load_report import (TARGET_MEMORY_FACTOR, leak_bound, markdown,  # noqa: E402
                          memory_bound, targets)
 from load_probe import (MemorySampler, browser_pages, discarded_sessions,  # noqa: E402
-                        log_failures, log_tracebacks, server_pid, tree_cpu_s, tree_rss_mb,
+                        log_failures, log_tracebacks, server_pid, settled_rss_mb, tree_cpu_s,
+                        tree_rss_mb,
                         wait_for_cleanup)
 
 #: The server looks for unused sessions every second and destroys those without a
@@ -145,9 +146,8 @@ def run(sessions: int = 30, duration: float = 60.0, out: Path | str = "bench-out
     with serve_app(log_path, app_dir=app_dir, extra_args=SERVE_ARGS) as base:
         phase("server up")
         pid = server_pid(int(base.rsplit(":", 1)[1]))
-        time.sleep(1.0)
-        # The server has built one page already (its /liveness check builds a session).
-        baseline = tree_rss_mb(pid)
+        # The server is up, its workers started and loaded the kernel; no page built yet.
+        baseline = settled_rss_mb(pid)
         log_start = log_path.stat().st_size
         browser: dict = {}
         for i, (name, seconds) in enumerate(zip(profiles, durations)):
