@@ -46,6 +46,8 @@ TAB_TITLES = ("One support", "Array", "Orientation (polar)", "Regime map", "Load
 TAB_FIGURES = ("Figs. 3, 7, Eq. 12", "Figs. 2a, 4", "Fig. 11", "Fig. 5", "Fig. 6", "Eqs. 3-13",
                "Eq. 5 in physical units, Figs. 5a, 11a")
 URL_DELAY_MS = 400
+#: Tabs whose figures fill the window (their views stretch both ways).
+FILL_TABS = ("polar", "map", "load", "design")
 PROJECTOR_STYLES, SCREEN_STYLES = ROOT_PROJECTOR, ROOT_SCREEN
 #: Width of the controls (px) on a screen and in projector mode, and folded away.
 SIDEBAR_WIDTH = {False: 290, True: 340}
@@ -92,9 +94,11 @@ class Dashboard(pn.viewable.Viewer):
             "equations": ("equations", EquationsView),
             "design": ("design", lambda: DesignView(**views))}
         # On a phone a tab is never wider than the screen, whatever its desktop layout.
-        self._holders = {tab: pn.Column(sizing_mode="stretch_width", margin=0,
-                                        stylesheets=[SHRINK_CSS])
-                         for tab in self._builders}
+        # Views of figures that fill the window stretch both ways, and so do their holders
+        # (said here, Panel does not override them with a warning at each page build).
+        self._holders = {tab: pn.Column(
+            sizing_mode="stretch_both" if tab in FILL_TABS else "stretch_width", margin=0,
+            stylesheets=[SHRINK_CSS]) for tab in self._builders}
         self.downloads = [
             pn.widgets.FileDownload(callback=self._trajectory_csv, filename="trajectory.csv",
                                     label="Trajectory CSV", css_classes=["download-trajectory"],
