@@ -64,7 +64,8 @@ def settled_rss_mb(pid: int, step_s: float = 1.0, tolerance_mb: float = 2.0,
     while time.monotonic() < deadline:
         time.sleep(step_s)
         now = tree_rss_mb(pid)
-        if now["processes"] == last["processes"] and abs(now["total"] - last["total"]) <= tolerance_mb:
+        same = now["processes"] == last["processes"]
+        if same and abs(now["total"] - last["total"]) <= tolerance_mb:
             return now
         last = now
     return last
