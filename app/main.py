@@ -12,7 +12,7 @@ import panel as pn
 from bokeh.models import CustomJS
 
 from app.app_hooks import guard_query_parsing
-from app.pages import page_gate, schedule_release
+from app.pages import page_gate, schedule_release, sessions_of
 from app.results import client_address
 from app.views import Dashboard
 
@@ -47,7 +47,8 @@ def serve() -> None:
         return
     if doc is not None:
         pn.state.onload(lambda: gate.opened(client, page_id))
-        doc.on_session_destroyed(lambda _context: (gate.gone(client, page_id), release()))
+        doc.on_session_destroyed(
+            lambda context: (gate.gone(client, page_id), release(sessions_of(context))))
     Dashboard.from_session().servable(title=TITLE)
     if doc is not None:
         gate.built(client, page_id)
