@@ -78,6 +78,25 @@ def _tree_rss_proc(pid: int) -> dict:
     return out
 
 
+def settled_rss_mb(pid: int, processes: int, timeout_s: float = 60.0,
+                   steady_mb: float = 2.0) -> dict:
+    """``tree_rss_mb`` once the server has as many processes as ``processes`` (its count
+    at the start) and the total has changed by less than ``steady_mb`` over three samples
+    1 s apart: the server replaces idle workers after the class left
+    (``app.pages.release_memory``), and fresh ones take a few seconds to load. After
+    ``timeout_s`` the last reading, as it is."""
+    deadline = time.monotonic() + timeout_s
+    readings = [tree_rss_mb(pid)]
+    while time.monotonic() < deadline:
+        time.sleep(1.0)
+        readings = (readings + [tree_rss_mb(pid)])[-3:]
+        totals = [r["total"] for r in readings]
+        if len(readings) == 3 and readings[-1]["processes"] == processes \
+                and max(totals) - min(totals) < steady_mb:
+            break
+    return readings[-1]
+
+
 def server_pid(port: int) -> int:
     """The pid of our ``panel serve`` child listening on ``port``."""
     for entry in os.listdir("/proc"):

@@ -95,8 +95,8 @@ from load_profile import ServerProfiler, summarise  # noqa: E402
 from load_report import (TARGET_MEMORY_FACTOR, leak_bound, markdown,  # noqa: E402
                          memory_bound, targets)
 from load_probe import (MemorySampler, browser_pages, discarded_sessions,  # noqa: E402
-                        log_failures, log_tracebacks, server_pid, tree_cpu_s, tree_rss_mb,
-                        wait_for_cleanup)
+                        log_failures, log_tracebacks, server_pid, settled_rss_mb, tree_cpu_s,
+                        tree_rss_mb, wait_for_cleanup)
 
 #: The server looks for unused sessions every second and destroys those without a
 #: connection for 5 s (Bokeh's default is 15 s; shorter, so cleanup happens within the run,
@@ -151,7 +151,8 @@ def run(sessions: int = 30, duration: float = 60.0, out: Path | str = "bench-out
         log_start = log_path.stat().st_size
         browser: dict = {}
         for i, (name, seconds) in enumerate(zip(profiles, durations)):
-            rounds.append(_round(base, app, pid, log_path, name, sessions, seconds, seed + i,
+            rounds.append(_round(base, app, pid, baseline["processes"], log_path, name,
+                                 sessions, seconds, seed + i,
                                  cleanup_timeout, browsers=browsers if i == 0 else 0,
                                  browser=browser, profile_path=(
                                      out / "server-profile.txt" if profile and i == 0
@@ -216,7 +217,8 @@ def run(sessions: int = 30, duration: float = 60.0, out: Path | str = "bench-out
     return report
 
 
-def _round(base, app, pid, log_path, profile, sessions, duration, seed, cleanup_timeout,
+def _round(base, app, pid, processes, log_path, profile, sessions, duration, seed,
+           cleanup_timeout,
            browsers=0, browser=None, profile_path=None) -> dict:
     """One round: ``sessions`` open, move sliders in ``profile`` for ``duration`` s and
     close; the server's memory, CPU and log are read around it."""
@@ -255,8 +257,10 @@ def _round(base, app, pid, log_path, profile, sessions, duration, seed, cleanup_
     ids = [s.session_id for s in driven if s.session_id]
     cleanup = wait_for_cleanup(log_path, set(ids), cleanup_timeout, app)
     # The server hands the ended sessions' memory back RELEASE_DELAY_S after the last one
-    # ended (app.pages.schedule_release): memory "after" is read once that has happened.
+    # ended (app.pages.schedule_release) and replaces its idle workers: memory "after" is
+    # read once that has happened and the fresh workers have loaded.
     time.sleep(RELEASE_DELAY_S + 2.0)
+    after = settled_rss_mb(pid, processes)
     lat = [x for s in driven for x in s.latencies]
     drag = [x for s in driven for x in s.drag_latencies]
     return {
@@ -275,7 +279,7 @@ def _round(base, app, pid, log_path, profile, sessions, duration, seed, cleanup_
         "ids": ids,
         "log_offset": closing["offset"],
         "cleanup": cleanup,
-        "memory_peak": peak, "memory_after": tree_rss_mb(pid),
+        "memory_peak": peak, "memory_after": after,
         "memory_samples": sampler.samples,
         "load_average": {"start": load0, "end": closing["load"]},
         "client_cpu_fraction": closing["client"] / max(elapsed, 1e-9),
