@@ -41,14 +41,14 @@ def serve() -> None:
     """The dashboard, or the busy page. (A function: the callbacks it leaves behind must
     not reach for this script's globals, which are gone once the page is built.)"""
     doc, gate, client = pn.state.curdoc, page_gate(), client_address()
-    page_id, release = id(doc), schedule_release
+    page_id, release, count = id(doc), schedule_release, sessions_of
     if doc is not None and not gate.admit(client, page_id):
         busy_page(doc).servable(title=f"{TITLE} (busy)")
         return
     if doc is not None:
         pn.state.onload(lambda: gate.opened(client, page_id))
         doc.on_session_destroyed(
-            lambda context: (gate.gone(client, page_id), release(sessions_of(context))))
+            lambda context: (gate.gone(client, page_id), release(count(context))))
     Dashboard.from_session().servable(title=TITLE)
     if doc is not None:
         gate.built(client, page_id)

@@ -78,6 +78,29 @@ def _tree_rss_proc(pid: int) -> dict:
     return out
 
 
+def worker_pids(pid: int) -> set[int]:
+    """The pids of the server's worker processes (``multiprocessing`` spawned children,
+    not its resource tracker)."""
+    found, order = set(), [pid]
+    children: dict[int, list[int]] = {}
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                ppid = int(Path(f"/proc/{entry}/stat").read_text().rsplit(")", 1)[1].split()[1])
+            except (OSError, IndexError, ValueError):
+                continue
+            children.setdefault(ppid, []).append(int(entry))
+    for p in order:
+        order.extend(children.get(p, []))
+        try:
+            cmd = Path(f"/proc/{p}/cmdline").read_bytes()
+        except OSError:
+            continue
+        if p != pid and b"spawn_main" in cmd:
+            found.add(p)
+    return found
+
+
 def settled_rss_mb(pid: int, processes: int, timeout_s: float = 60.0,
                    steady_mb: float = 2.0) -> dict:
     """``tree_rss_mb`` once the server has as many processes as ``processes`` (its count

@@ -96,7 +96,7 @@ from load_report import (TARGET_MEMORY_FACTOR, leak_bound, markdown,  # noqa: E4
                          memory_bound, targets)
 from load_probe import (MemorySampler, browser_pages, discarded_sessions,  # noqa: E402
                         log_failures, log_tracebacks, server_pid, settled_rss_mb, tree_cpu_s,
-                        tree_rss_mb, wait_for_cleanup)
+                        tree_rss_mb, wait_for_cleanup, worker_pids)
 
 #: The server looks for unused sessions every second and destroys those without a
 #: connection for 5 s (Bokeh's default is 15 s; shorter, so cleanup happens within the run,
@@ -207,6 +207,7 @@ def run(sessions: int = 30, duration: float = 60.0, out: Path | str = "bench-out
                                          for r in rounds),
         "memory back near baseline": after["total"] <= bound and after_again["total"] <= bound,
         "no growth from a second round": after_again["total"] - after["total"] <= growth_bound,
+        "fresh workers after each round": all(r["workers_replaced"] for r in rounds),
         "every session destroyed": all(r["cleanup"]["destroyed"] == sessions
                                        and r["cleanup"]["open_after"] == 0 for r in rounds),
     }
@@ -224,6 +225,7 @@ def _round(base, app, pid, processes, log_path, profile, sessions, duration, see
     close; the server's memory, CPU and log are read around it."""
     sampler = MemorySampler(pid)
     sampler.start()
+    workers_before = worker_pids(pid)
     thread = None
     if browsers:
         thread = threading.Thread(target=browser_pages,
@@ -261,6 +263,7 @@ def _round(base, app, pid, processes, log_path, profile, sessions, duration, see
     # read once that has happened and the fresh workers have loaded.
     time.sleep(RELEASE_DELAY_S + 2.0)
     after = settled_rss_mb(pid, processes)
+    workers_after = worker_pids(pid)
     lat = [x for s in driven for x in s.latencies]
     drag = [x for s in driven for x in s.drag_latencies]
     return {
@@ -280,6 +283,8 @@ def _round(base, app, pid, processes, log_path, profile, sessions, duration, see
         "log_offset": closing["offset"],
         "cleanup": cleanup,
         "memory_peak": peak, "memory_after": after,
+        # The server replaces its idle workers once the last session ended.
+        "workers_replaced": bool(workers_before) and not workers_before & workers_after,
         "memory_samples": sampler.samples,
         "load_average": {"start": load0, "end": closing["load"]},
         "client_cpu_fraction": closing["client"] / max(elapsed, 1e-9),
