@@ -13,7 +13,7 @@ import panel as pn
 from bokeh.models import CustomJS
 
 from app.app_hooks import guard_query_parsing
-from app.pages import page_gate, schedule_release
+from app.pages import page_gate, schedule_release, sessions_of
 from app.results import client_address
 from app.views import Dashboard
 from app.views.widgets import caption, look
@@ -50,13 +50,14 @@ def serve() -> None:
         # with a real session. Building it here held the loop ~0.3 s (seconds under a
         # class) and took a place in the page gate each time.
         return
-    page_id, release = id(doc), schedule_release
+    page_id, release, count = id(doc), schedule_release, sessions_of
     if doc is not None and not gate.admit(client, page_id):
         busy_page(doc).servable(title=f"{TITLE} (busy)")
         return
     if doc is not None:
         pn.state.onload(lambda: gate.opened(client, page_id))
-        doc.on_session_destroyed(lambda _context: (gate.gone(client, page_id), release()))
+        doc.on_session_destroyed(
+            lambda context: (gate.gone(client, page_id), release(count(context))))
     Dashboard.from_session().servable(title=TITLE)
     if doc is not None:
         gate.built(client, page_id)

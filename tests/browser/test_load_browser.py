@@ -47,6 +47,8 @@ def check(report: dict, done: subprocess.CompletedProcess, out: Path) -> None:
     assert memory["after_second_round"]["total"] <= memory["bound_total"], memory
     growth = memory["after_second_round"]["total"] - memory["after"]["total"]
     assert growth <= memory["second_round_growth_bound"], memory
+    # the class left: the server replaced its idle workers by fresh ones (app.pages)
+    assert all(r["workers_replaced"] for r in report["rounds"]), report["rounds"]
     for cleanup in (r["cleanup"] for r in report["rounds"]):
         assert cleanup["destroyed"] == cleanup["sessions"] == sessions, cleanup
         assert cleanup["open_after"] == 0, cleanup
