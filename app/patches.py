@@ -63,3 +63,30 @@ def release(doc) -> int:
         if event not in batch:
             callbacks.trigger_on_change(event)
     return sent
+
+
+def hold_until_next_tick(doc) -> bool:
+    """Hold ``doc``'s changes until the event loop's next turn, then ``release`` them.
+
+    Called as the first reaction to a change of the controls (``Dashboard``): a slider move
+    changes ~15 properties across the views (busy markers, readouts, the address bar,
+    download names) before any result arrives, and Panel would send each as its own
+    ``PATCH-DOC`` (one pass over every model of the page each). Held, they leave together.
+    Nothing is held when ``doc`` is not a served session's or is held already (a result
+    being applied: its holder releases it). Returns whether a hold was begun.
+    """
+    if doc is None or getattr(doc, "session_context", None) is None \
+            or doc.callbacks.hold_value:
+        return False
+
+    def later():
+        if doc.callbacks.hold_value:
+            release(doc)
+    try:
+        # Before the hold: a held document holds the news of a new callback too (Bokeh's
+        # ``SessionCallbackAdded``), and the release would never be scheduled.
+        doc.add_next_tick_callback(later)
+    except Exception:  # the session is closing: nothing will be sent anyway
+        return False
+    doc.hold("combine")
+    return True

@@ -12,7 +12,17 @@ def test_the_card_follows_the_controls_and_runs():
 
     state = ExplorerState()
     view = CodeView(state=state, results=SessionResults(state))
+    # folded, the card writes nothing (a slider move costs no rendering) ...
+    assert view.card.collapsed and view.code.object == ""
     state.param.update(k_r=0.5, F_N=2.0)
+    assert view.code.object == ""
+    # ... opened, it shows the snippet of the controls as they are now, and follows them
+    view.card.collapsed = False
+    assert "k_r=0.5" in view.code.object and "F_N=2.0" in view.code.object
+    state.param.update(k_r=0.25)
+    text = view.code.object
+    assert "k_r=0.25" in text and "k_r=0.5" not in text
+    state.k_r = 0.5
     text = view.code.object
     assert text.startswith("```python") and "k_r=0.5" in text and "F_N=2.0" in text
     code = text.removeprefix("```python\n").removesuffix("```")

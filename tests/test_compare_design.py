@@ -249,6 +249,7 @@ def test_the_headline_names_a_and_b_minus_a(page):
 
 
 def test_the_snippet_card_computes_a_and_b_on_the_design_tab(page):
+    page.code.card.collapsed = False
     text = page.code.code.object
     assert "design_A = PillarDesign(" in text and "V0='100 m/s'" in text
     assert "design = PillarDesign(" in text and "V0='80 m/s'" in text

@@ -34,13 +34,14 @@ class Connection:
     send_patch_document = ServerConnection.send_patch_document
 
 
-def served_document():
-    """A document with three models behind a server session with one connection."""
+def served_document(io_loop=None):
+    """A document with three models behind a server session with one connection (its
+    callbacks run on ``io_loop``, when given)."""
     doc = Document()
     source, x, y = ColumnDataSource(data={"a": [1, 2]}), Range1d(0, 1), Range1d(0, 1)
     for model in (source, x, y):
         doc.add_root(model)
-    session = ServerSession("s", doc)
+    session = ServerSession("s", doc, io_loop=io_loop)
     context = BokehSessionContext("s", None, doc)
     context._set_session(session)
     doc._session_context = weakref.ref(context)
@@ -112,3 +113,38 @@ def test_another_listener_on_the_document_gets_every_change_as_before():
         assert release(doc) == 0  # not batched: unhold() as before
     asyncio.run(session.with_document_locked(update))
     assert len(events) == 2 and len(connection._socket.messages) == 2
+
+
+def test_a_hold_until_the_next_tick_sends_the_changes_then_in_one_message():
+    from tornado.ioloop import IOLoop
+
+    from app.patches import hold_until_next_tick
+
+    async def main():
+        doc, session, connection, _context, (source, x, y) = served_document(IOLoop.current())
+
+        def change():
+            assert hold_until_next_tick(doc)
+            assert not hold_until_next_tick(doc)  # held already: the first hold sends
+            x.start, y.end = 4.0, 5.0
+            source.data = {"a": [7]}
+        await session.with_document_locked(change)
+        assert connection._socket.messages == [] and doc.callbacks.hold_value
+        for _ in range(20):  # the next turn of the loop
+            await asyncio.sleep(0.01)
+            if connection._socket.messages:
+                break
+        return doc, connection
+    doc, connection = asyncio.run(main())
+    [message] = connection._socket.messages
+    assert changed(message) == [("ColumnDataChanged", "data"), ("ModelChanged", "end"),
+                                ("ModelChanged", "start")]
+    assert doc.callbacks.hold_value is None
+
+
+def test_no_hold_without_a_served_session():
+    from app.patches import hold_until_next_tick
+
+    doc = Document()
+    assert not hold_until_next_tick(doc) and not hold_until_next_tick(None)
+    assert doc.callbacks.hold_value is None

@@ -4,6 +4,7 @@ import math
 import pytest
 
 from app.views.readouts import change_words, fixed_markdown, headline_text, uniform_markdown
+from app.state import ExplorerState
 
 
 @pytest.mark.parametrize("ratio, words", [
@@ -49,3 +50,17 @@ def test_the_page_headline_follows_the_results():
     page.state.theta0 = 30.0
     assert "θ₀ = 30°" in page.headline.pane.object
     assert change_words(page.results.support.fixed.FTx_over_mu0FN) in page.headline.pane.object
+
+
+def test_the_uniform_readout_shows_a_spinner_while_its_array_is_computed():
+    from app.results import SessionResults
+    from app.views.readouts import ReadoutsView
+
+    state = ExplorerState()
+    results = SessionResults(state)
+    view = ReadoutsView(state=state, results=results)
+    text = view.uniform_pane.object
+    results.busy = ["support", "uniform"]
+    assert view.uniform_holder.loading and view.uniform_pane.object == text
+    results.busy = ["support"]
+    assert not view.uniform_holder.loading

@@ -26,6 +26,10 @@ class CodeView(pn.viewable.Viewer):
         self.card = pn.Card(self.code, title="This view as Python", collapsed=True,
                             css_classes=["ctl-code"], sizing_mode="stretch_width",
                             margin=(4, 3))
+        # Folded, the snippet is not written (rendering and highlighting it took ~15 % of
+        # the server's time per slider move); it is written when the card opens.
+        self._stale = True
+        self.card.param.watch(self._on_open, "collapsed")
         self.version = pn.pane.Markdown(
             f"{version_text()} · cite with `CITATION.cff`", css_classes=["version"],
             margin=(0, 10), styles={"font-size": "0.8em", "color": "#555"})
@@ -36,10 +40,18 @@ class CodeView(pn.viewable.Viewer):
                    "state.tab", *(f"state.{name}" for name in DESIGN_KEYS + DIST_KEYS),
                    watch=True)
     def _write(self) -> None:
+        if self.card.collapsed:
+            self._stale = True
+            return
+        self._stale = False
         try:
             self.code.object = f"```python\n{view_as_python(self.state)}```"
         except ValueError as exc:  # a state the model refuses: say so
             self.code.object = f"*No snippet for these controls: {exc}*"
+
+    def _on_open(self, event) -> None:
+        if not event.new and self._stale:
+            self._write()
 
     def __panel__(self):
         return pn.Column(self.card, self.version, sizing_mode="stretch_width", margin=0)

@@ -175,8 +175,12 @@ class ReadoutsView(pn.viewable.Viewer):
         self.compare_pane = pn.pane.Markdown("", css_classes=["readout-compare"],
                                              styles=style, stylesheets=compact, visible=False,
                                              **wide)
+        # The spinner goes on a holder: on a Markdown pane Panel marks loading by
+        # rendering the pane's text again (twice per slider move, for a folded card).
+        self.uniform_holder = pn.Column(self.uniform_pane, sizing_mode="stretch_width",
+                                        margin=0)
         self.details = pn.Card(
-            self.fixed_pane, self.uniform_pane, title="Numbers and diagnostics",
+            self.fixed_pane, self.uniform_holder, title="Numbers and diagnostics",
             collapsed=True, css_classes=["readout-details"], sizing_mode="stretch_width",
             margin=(6, 5))
         self._compare()
@@ -208,7 +212,7 @@ class ReadoutsView(pn.viewable.Viewer):
 
     @param.depends("results.busy", watch=True)
     def _busy(self) -> None:
-        self.uniform_pane.loading = "uniform" in self.results.busy
+        self.uniform_holder.loading = "uniform" in self.results.busy
 
     def __panel__(self):
         return pn.Column(self.regime_pane, self.compare_pane, self.details, css_classes=["readouts", "side-column"],
