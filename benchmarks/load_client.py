@@ -70,8 +70,16 @@ class Session:
         self.doc: Document | None = None
         self.socket = self.conn = None
         self.session_id = ""
+        #: Seconds from a move's message leaving this client (serialised and written) to
+        #: the server's message with the new data being read here, before this client
+        #: applies it: the server's latency, without this Python client's own costs
+        #: (serialising a patch and applying one against its ~400-model copy of the
+        #: page take ~50 ms each here; BokehJS in a browser does them in its own process).
         self.latencies: list[float] = []
         self.drag_latencies: list[float] = []
+        #: The same moves until this client had applied the data (its costs included).
+        self.client_latencies: list[float] = []
+        self.last_orbit_read = math.nan  # when the latest message with orbit data was read
         self.open_s = math.nan
         self.opened_at = math.nan
         self.busy_pages = 0  # busy pages received before the dashboard
@@ -116,6 +124,10 @@ class Session:
         self.socket = await websocket_connect(HTTPRequest(url, network_interface=self.source),
                                               subprotocols=["bokeh", token],
                                               max_message_size=50 * 2**20)
+        # As browsers do (Chromium sets TCP_NODELAY on every socket): without it, a
+        # message's second frame waits for the server's delayed ACK of the first (~40 ms
+        # on Linux), and every move would look 40 ms slower than the server is.
+        self.socket.protocol.set_nodelay(True)
         self.conn = WebSocketClientConnectionWrapper(self.socket)
         ack = await self._read()
         if ack is None or ack.msgtype != "ACK":
@@ -192,16 +204,20 @@ class Session:
         try:
             while True:
                 message = await self._read()
+                read_at = time.perf_counter()
                 if message is None:
                     if not self._closing:
                         self.errors.append("the server closed the connection")
                     return
                 if message.msgtype == "PATCH-DOC":
+                    events = message.content.get("events", [])
+                    orbit = any((e.get("model") or {}).get("id") == self.orbit.id
+                                for e in events)
                     message.apply_to_document(self.doc, self)
                     self.patches += 1
-                    events = message.content.get("events", [])
-                    self.orbit_pushes += any((e.get("model") or {}).get("id") == self.orbit.id
-                                             for e in events)
+                    if orbit:
+                        self.last_orbit_read = read_at
+                    self.orbit_pushes += orbit
                     self.recent.append((time.perf_counter(),
                                         [(e.get("kind"), e.get("attr")) for e in events]))
                     self._patched.set()
@@ -225,11 +241,17 @@ class Session:
     def _readout_shows(self, degrees: float) -> bool:
         return f"θ₀ = {degrees:g}°" in (self.readout.text or "")
 
-    async def _set(self, name: str, value: float) -> None:
+    async def _set(self, name: str, value: float) -> float:
+        """Move the slider; when its message had left (``time.perf_counter``)."""
         slider = self.sliders[name]
         slider.value = value
         slider.set_from_json("value_throttled", value)  # read-only in Python, as BokehJS sets it
         await self._flush()
+        return time.perf_counter()
+
+    def _record(self, latencies: list, sent: float, wrote: float, now: float) -> None:
+        latencies.append(max(0.0, self.last_orbit_read - wrote))
+        self.client_latencies.append(now - sent)
 
     def _position(self, name: str) -> float:
         s = self.sliders[name]
@@ -257,7 +279,7 @@ class Session:
                 await asyncio.sleep(DRAG_GAP_S)
             value = self._position(name)
             sent, pushes = time.perf_counter(), self.orbit_pushes
-            await self._set(name, value)
+            wrote = await self._set(name, value)
 
         def done() -> bool:
             return self._arrived(name, value, pushes)
@@ -275,7 +297,8 @@ class Session:
                 await asyncio.wait_for(self._patched.wait(), timeout=left)
             except asyncio.TimeoutError:
                 pass
-        (self.drag_latencies if drag else self.latencies).append(time.perf_counter() - sent)
+        self._record(self.drag_latencies if drag else self.latencies, sent, wrote,
+                     time.perf_counter())
 
     def _diagnosis(self, sent: float) -> str:
         values = {k: round(m.value, 4) for k, m in self.sliders.items()}
@@ -299,18 +322,19 @@ class Session:
         up. A move's latency runs from its sending until data for it arrives; a move
         overtaken by a later one before its data came (a theta0 angle never shown) counts
         until the later one's data arrives: what the student waited for."""
-        pending: list[tuple[float, str, float, int]] = []  # (sent, slider, value, pushes)
+        # (sent, wrote: its message written, slider, value, pushes)
+        pending: list[tuple[float, float, str, float, int]] = []
         next_move = time.perf_counter() + self.rng.uniform(0.0, CLASS_GAP_S[1])
         while True:
             now = time.perf_counter()
             if pending:
-                done = [i for i, (_, n, v, p) in enumerate(pending) if self._arrived(n, v, p)]
+                done = [i for i, (*_, n, v, p) in enumerate(pending) if self._arrived(n, v, p)]
                 if done:
-                    for sent, *_ in pending[:done[-1] + 1]:
-                        self.latencies.append(now - sent)
+                    for sent, wrote, *_ in pending[:done[-1] + 1]:
+                        self._record(self.latencies, sent, wrote, now)
                     del pending[:done[-1] + 1]
             if pending and now - pending[0][0] > UPDATE_TIMEOUT_S:
-                _, name, value, _ = pending[0]
+                _, _, name, value, _ = pending[0]
                 raise SessionFailure(f"no update within {UPDATE_TIMEOUT_S:.0f} s after "
                                      f"{name} = {value}; " + self._diagnosis(pending[0][0]))
             if self.errors:
@@ -320,8 +344,9 @@ class Session:
             if now >= next_move and now < until:
                 name = self.rng.choice(list(self.sliders))
                 value = self._position(name)
-                pending.append((time.perf_counter(), name, value, self.orbit_pushes))
-                await self._set(name, value)
+                sent, pushes = time.perf_counter(), self.orbit_pushes
+                wrote = await self._set(name, value)
+                pending.append((sent, wrote, name, value, pushes))
                 next_move += self.rng.uniform(*CLASS_GAP_S)
                 continue
             wake = min(next_move if now < until else math.inf,
