@@ -12,7 +12,13 @@ FROM python:3.11.14-slim-bookworm
 # BOKEH_RESOURCES=server: BokehJS and Panel's JS/CSS come from this server, never a CDN.
 # BOKEH_ALLOW_WS_ORIGIN: comma-separated host[:port] list of pages allowed to open the
 #   websocket, as the browser sees them (set it to the public host behind a proxy).
+# PYTHONMALLOC=malloc, MALLOC_ARENA_MAX=2: glibc's allocator, in two arenas, for every
+#   object: the server hands a class's memory back once it has left (1.06 x the start
+#   instead of 1.19 x with CPython's own, whose 1 MB arenas stay while a single object in
+#   them lives; same CPU per update; README "Load").
 ENV PYTHONUNBUFFERED=1 \
+    PYTHONMALLOC=malloc \
+    MALLOC_ARENA_MAX=2 \
     PYTHONDONTWRITEBYTECODE=1 \
     PIP_DISABLE_PIP_VERSION_CHECK=1 \
     NUMBA_CACHE_DIR=/var/cache/micropillar/numba \

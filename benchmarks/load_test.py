@@ -97,6 +97,7 @@ import numpy as np  # noqa: E402
 
 from app.pages import RELEASE_DELAY_S  # noqa: E402
 from tests.browser.serving import serve_app  # noqa: E402
+from tests.dockerfile_replay import dockerfile, image_env  # noqa: E402
 from load_client import (CLASS_GAP_S, DRAG_PROBABILITY, PROFILES, THINK_S,  # noqa: E402
                          UPDATE_TIMEOUT_S, drive)
 from load_profile import ServerProfiler, summarise  # noqa: E402
@@ -114,6 +115,20 @@ CHECK_UNUSED_MS, UNUSED_LIFETIME_MS = 1000, 5000
 SERVE_ARGS = ("--check-unused-sessions", str(CHECK_UNUSED_MS),
               "--unused-session-lifetime", str(UNUSED_LIFETIME_MS),
               "--stats-log-frequency", "1000", "--log-level", "debug")
+#: The allocator settings of the image (Dockerfile ENV), with which the server runs as
+#: deployed; ``--allocator python`` serves with CPython's own allocator instead.
+ALLOCATOR_KEYS = ("PYTHONMALLOC", "MALLOC_ARENA_MAX")
+
+
+def server_env(allocator: str = "image") -> dict[str, str]:
+    """The environment the server is given on top of this process's: the image's allocator
+    settings (``allocator="image"``) or CPython's own (``"python"``)."""
+    if allocator == "python":
+        return {"PYTHONMALLOC": "pymalloc", "MALLOC_ARENA_MAX": ""}
+    if allocator != "image":
+        raise ValueError(f"allocator {allocator!r}: give 'image' or 'python'")
+    env = image_env(dockerfile())
+    return {key: env[key] for key in ALLOCATOR_KEYS if key in env}
 
 
 # ------------------------------------------------------------------------------ run
@@ -129,7 +144,8 @@ def percentiles(seconds) -> dict:
 def run(sessions: int = 30, duration: float = 60.0, out: Path | str = "bench-out",
         browsers: int = 0, seed: int = 1, cleanup_timeout: float = 60.0,
         app_dir: str = "app", drag_duration: float | None = None,
-        profiles: tuple[str, ...] = ("class", "drag"), profile: bool = False) -> dict:
+        profiles: tuple[str, ...] = ("class", "drag"), profile: bool = False,
+        allocator: str = "image") -> dict:
     """Serve the app, drive a round of ``sessions`` per profile in ``profiles`` (the first
     for ``duration`` s, the next for ``drag_duration``, default ``duration``; one profile
     alone is repeated for a third of the time), and return (and write) the report."""
@@ -150,7 +166,8 @@ def run(sessions: int = 30, duration: float = 60.0, out: Path | str = "bench-out
     def phase(name: str) -> None:
         phases[name] = round(time.perf_counter() - t0, 1)
     rounds = []
-    with serve_app(log_path, app_dir=app_dir, extra_args=SERVE_ARGS) as base:
+    extra_env = server_env(allocator)
+    with serve_app(log_path, app_dir=app_dir, extra_args=SERVE_ARGS, env=extra_env) as base:
         phase("server up")
         pid = server_pid(int(base.rsplit(":", 1)[1]))
         # The server is up, its workers started and loaded the kernel; no page built yet.
@@ -193,6 +210,7 @@ def run(sessions: int = 30, duration: float = 60.0, out: Path | str = "bench-out
                      "browsers": browsers, "seed": seed, "think_s": THINK_S,
                      "class_gap_s": CLASS_GAP_S, "drag_probability": DRAG_PROBABILITY,
                      "update_timeout_s": UPDATE_TIMEOUT_S, "serve_args": list(SERVE_ARGS),
+                     "allocator": allocator, "server_env": extra_env,
                      "cpus": os.cpu_count()},
         "rounds": rounds,
         "errors": errors,
@@ -319,6 +337,9 @@ def main(argv=None) -> int:
                     help="record the server and its workers with py-spy during round 1 "
                          "(DIR/server-profile.txt) and summarise where the time goes")
     ap.add_argument("--app", default="app", help="the app folder to serve (default app)")
+    ap.add_argument("--allocator", choices=("image", "python"), default="image",
+                    help="the server's memory allocator: the image's settings (Dockerfile "
+                         "ENV PYTHONMALLOC, MALLOC_ARENA_MAX; default) or CPython's own")
     ap.add_argument("--out", default="bench-out", help="output folder (default bench-out)")
     args = ap.parse_args(argv)
     profiles = tuple(p.strip() for p in args.profiles.split(",") if p.strip())
@@ -332,7 +353,7 @@ def main(argv=None) -> int:
         args.drag_duration = args.drag_duration or 6.0
     report = run(args.sessions, args.duration, args.out, browsers=args.browsers, seed=args.seed,
                  app_dir=args.app, drag_duration=args.drag_duration, profiles=profiles,
-                 profile=args.profile)
+                 profile=args.profile, allocator=args.allocator)
     print(markdown(report))
     return 0 if report["passed"] else 1
 

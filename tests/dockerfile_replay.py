@@ -15,7 +15,7 @@ import sys
 import time
 from pathlib import Path
 
-from browser.serving import ROOT
+ROOT = Path(__file__).resolve().parents[1]  # the repository (importable as tests.* too)
 
 DOCKERFILE = ROOT / "Dockerfile"
 DOCKERIGNORE = ROOT / ".dockerignore"

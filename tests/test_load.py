@@ -31,3 +31,26 @@ def test_memory_freed_by_ended_sessions_goes_back_to_the_system():
     after = _rss_mb()
     assert len(kept) == 800
     assert before - after > 80, (before, after)  # most of the 160 MB is handed back
+
+
+def test_the_load_test_serves_with_the_images_allocator():
+    """The load test measures the server as the image runs it: glibc's allocator in two
+    arenas (Dockerfile ENV), or CPython's own when asked for comparison."""
+    import json
+    import subprocess
+
+    from tests.dockerfile_replay import ROOT, dockerfile, image_env
+
+    env = image_env(dockerfile())
+    assert env["PYTHONMALLOC"] == "malloc" and env["MALLOC_ARENA_MAX"] == "2"
+    code = ("import json, load_test as t; print(json.dumps([t.server_env(), "
+            "t.server_env('python')]))\ntry:\n    t.server_env('jemalloc')\n"
+            "except ValueError as e:\n    print(e)")
+    done = subprocess.run([sys.executable, "-c", code], cwd=ROOT / "benchmarks",
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    first, error = done.stdout.strip().splitlines()[-2:]
+    image, python = json.loads(first)
+    assert image == {"PYTHONMALLOC": "malloc", "MALLOC_ARENA_MAX": "2"}
+    assert python["PYTHONMALLOC"] == "pymalloc"
+    assert "allocator 'jemalloc'" in error

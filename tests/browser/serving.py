@@ -50,14 +50,15 @@ def _status(url: str) -> int | None:
 
 @contextlib.contextmanager
 def serve_app(log_path: Path, app_dir: str = "app", timeout_s: float = 60.0, warmup: bool = True,
-              extra_args: tuple[str, ...] = ()):
+              extra_args: tuple[str, ...] = (), env: dict | None = None):
     """Run ``panel serve <app_dir>`` from the repository root on a free loopback port.
 
     Compiles the model's kernel first (``python -m model warmup``), waits until
     ``/liveness?endpoint=/<app>`` answers 200 (the server ran the app's page script), yields
     the base URL (``http://127.0.0.1:<port>``) and stops the server on exit. The server's
     output goes to ``log_path``. Raises ``ServerError`` (with the log's tail) otherwise.
-    ``extra_args`` are appended to the ``panel serve`` command line.
+    ``extra_args`` are appended to the ``panel serve`` command line; ``env`` is added to
+    the server's environment.
     """
     if warmup:
         subprocess.run([sys.executable, "-m", "model", "warmup"], cwd=ROOT, check=True,
@@ -69,7 +70,7 @@ def serve_app(log_path: Path, app_dir: str = "app", timeout_s: float = 60.0, war
         "serve", app_dir, "--port", str(port), "--address", "127.0.0.1",
         f"--allow-websocket-origin=127.0.0.1:{port}", "--liveness", *extra_args]
     log = open(log_path, "w", encoding="utf-8")
-    env = dict(os.environ, PYTHONUNBUFFERED="1")
+    env = dict(os.environ, PYTHONUNBUFFERED="1", **(env or {}))
     process = subprocess.Popen(command, cwd=ROOT, stdout=log, stderr=subprocess.STDOUT, env=env)
     try:
         deadline = time.monotonic() + timeout_s
