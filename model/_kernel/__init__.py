@@ -20,7 +20,7 @@ __all__ = ["pack", "initial_state", "integrate", "integrate_batch", "warmup", "c
            "slots", "STAT_NAMES", "N_STATE", "N_MOTION", "N_STATS", "N_REC", "REC_SLOTS", "N_NODE_COLS", "MAX_NODES", "METHOD_CODES", "TH0", "X0", "FN", "TAU", "REG", "DERIVED"]
 
 METHOD_CODES = {"auto": 0, "explicit": 1, "implicit": 2}
-_MODULES = ("slots", "rhs", "dopri5", "rodas4", "driver", "batch")
+_MODULES = ("slots", "rhs", "dopri5", "dop853", "rodas4", "driver", "batch")
 
 
 def _purge_stale_cache() -> None:

@@ -15,7 +15,7 @@ import math
 import numpy as np
 from numba import njit
 
-from . import dopri5, rodas4
+from . import dop853, rodas4
 from .rhs import copy_into, exit_gap, jacobian, rhs
 from .slots import (ERROR_SLOTS, N_ERROR, N_MOTION, N_STATE, N_STATS, NONFINITE, OK, ST_ACC,
                     ST_ACC_EXPL, ST_ACC_IMPL, ST_JAC, ST_LU, ST_REJ, ST_RHS, ST_SWITCH,
@@ -23,7 +23,7 @@ from .slots import (ERROR_SLOTS, N_ERROR, N_MOTION, N_STATE, N_STATS, NONFINITE,
                     X, Y)
 
 SAFETY = 0.9
-STIFF_HLAMBDA = 3.25  # DP5 stability boundary on the negative real axis (~3.3)
+STIFF_HLAMBDA = 6.1  # DOP853 stability boundary on the negative real axis (Hairer's DOP853)
 STIFF_COUNT = 15
 NONSTIFF_HNORM = 2.0  # back to explicit when h ||J||_inf stays below this
 NONSTIFF_COUNT = 5
@@ -96,8 +96,8 @@ def _gap_at(th, h, y, f, ynew, fnew, K, implicit, P):
         x = _hermite(y, f, ynew, fnew, h, th, X)
         tau = _hermite(y, f, ynew, fnew, h, th, TAU)
     else:
-        x = dopri5.dense_component(y, K, h, th, X)
-        tau = dopri5.dense_component(y, K, h, th, TAU)
+        x = 0.0
+        tau = 0.0
     return exit_gap(tau, x, P)
 
 
@@ -224,14 +224,16 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
     err = np.empty(n)
     ystage = np.empty(n)
     b = np.empty(n)
-    K = np.zeros((7, n))
+    K = np.zeros((dop853.N_ROWS, n))
+    FX = np.empty(dop853.N_POLY)
+    FT = np.empty(dop853.N_POLY)
     Kr = np.zeros((6, n))
     J = np.zeros((n, N_MOTION))
     M = np.empty((N_MOTION, N_MOTION))
     piv = np.zeros(N_MOTION, np.int64)
     rhs(y, P, f)
     implicit = method == 2
-    h = _initial_step(y, f, P, rtol, atol, 4 if implicit else 5, ystage, fnew)
+    h = _initial_step(y, f, P, rtol, atol, 4 if implicit else 8, ystage, fnew)
     stats[ST_RHS] += 2
     nodes = np.empty((256 if record else 1, N_NODE_COLS))
     n_nodes = 0
@@ -278,10 +280,10 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
             expo = 1.0 / rodas4.ORDER
             maxfac = 6.0
         else:
-            dopri5.step(y, f, h, P, K, ynew, err, ystage)
-            stats[ST_RHS] += 6
-            en = _err_norm(err, y, ynew, rtol, atol)
-            expo = 1.0 / dopri5.ORDER
+            dop853.step(y, f, h, P, K, ynew, ystage)
+            stats[ST_RHS] += 12
+            en = dop853.error_norm(h, K, y, ynew, rtol, atol)
+            expo = 1.0 / dop853.ORDER
             maxfac = 10.0
         if en > 1.0 and not finishing:
             stats[ST_REJ] += 1
@@ -295,11 +297,15 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
             stats[ST_RHS] += 1
         else:
             for i in range(n):
-                fnew[i] = K[6, i]
+                fnew[i] = K[dop853.N_STAGES, i]
         if finishing:
             status = OK
         else:
-            th = _locate_exit(h, y, f, ynew, fnew, K, implicit, P)
+            if implicit:
+                th = _locate_exit(h, y, f, ynew, fnew, K, implicit, P)
+            else:
+                th, extra = dop853.locate_exit(h, y, ynew, K, P, ystage, SCAN_POINTS, FX, FT)
+                stats[ST_RHS] += extra
             if th > 0.0:
                 # Retake this step exactly to the located exit time.
                 h = th * h
@@ -320,7 +326,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
                 if easy >= NONSTIFF_COUNT:
                     implicit = False
                     switched = True
-            elif dopri5.stiffness_ratio(h, K, ynew, ystage) > STIFF_HLAMBDA:
+            elif dop853.stiffness_ratio(h, K, ynew, ystage) > STIFF_HLAMBDA:
                 nonstiff = 0
                 stiff += 1
                 if stiff >= STIFF_COUNT:
