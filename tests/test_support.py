@@ -216,11 +216,12 @@ def test_params_must_be_params():
 
 
 def test_inaccurate_result_is_flagged():
-    params = HARD["compliant F_N=10"]
-    junk = simulate_support(params, rtol=1e-3, method="explicit")  # held at its stability limit
+    # On the exact axis at rtol 1e-2 the explicit pair misses the energy balance by ~7e-2.
+    params = HARD["slider theta0=0"]
+    junk = simulate_support(params, rtol=1e-2, method="explicit")
     assert junk.success and not junk.accurate and "inaccurate" in junk.message
-    assert abs(junk.t_out - simulate_support(params).t_out) > 10  # it really is wrong
-    good = simulate_support(params, rtol=1e-3)
+    assert abs(junk.t_out - simulate_support(params).t_out) > 0.1  # it really is wrong
+    good = simulate_support(HARD["compliant F_N=10"], rtol=1e-3)
     assert good.accurate and "warning" not in good.message
 
 

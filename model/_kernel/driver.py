@@ -1,12 +1,13 @@
 """Adaptive integration of one contact until the exit event of Eq. (9).
 
-Methods: 1 = explicit Dormand-Prince 5(4), 2 = implicit Rodas4, 0 = automatic:
+Methods: 1 = explicit DOP853 (Dormand-Prince 8(5,3)), 2 = implicit Rodas4, 0 = automatic:
 start explicit, switch to Rodas4 when the stiffness detector of Hairer & Wanner
 (IV.2) fires repeatedly, and back when h ||J|| shows the explicit pair would be
 stable at the current step.
 
 The exit is located on the dense output of the accepted step (first crossing of
-s(tau) = L0, scanning the step when s may cross and re-cross), then the step is
+s(tau) = L0, scanning the step when s may cross and re-cross: DOP853's 7th-order
+output, cubic Hermite after a Rodas4 step), then the step is
 retaken exactly to the located time, so the exit state has the method's full
 accuracy rather than the interpolant's.
 """
@@ -32,7 +33,7 @@ NONSTIFF_COUNT = 5
 PIVOT_EXPLICIT = 1e-3
 SCAN_POINTS = 8
 # PI step-size control (Gustafsson; Hairer & Wanner I, IV.2): the explicit pair uses
-# err^-(1/5 - 0.75 BETA) * err_old^BETA, which damps the accept/reject oscillation.
+# err^-(1/8 - 0.75 BETA) * err_old^BETA, which damps the accept/reject oscillation.
 PI_BETA = 0.04
 LOG_EN_FLOOR = math.log(1e-4)  # err_old is taken as at least 1e-4
 
@@ -91,19 +92,17 @@ def _hermite(y0, f0, y1, f1, h, th, i):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _gap_at(th, h, y, f, ynew, fnew, K, implicit, P):
-    if implicit:
-        x = _hermite(y, f, ynew, fnew, h, th, X)
-        tau = _hermite(y, f, ynew, fnew, h, th, TAU)
-    else:
-        x = 0.0
-        tau = 0.0
+def _gap_at(th, h, y, f, ynew, fnew, P):
+    x = _hermite(y, f, ynew, fnew, h, th, X)
+    tau = _hermite(y, f, ynew, fnew, h, th, TAU)
     return exit_gap(tau, x, P)
 
 
 @njit(cache=True, error_model="numpy")
-def _locate_exit(h, y, f, ynew, fnew, K, implicit, P):
-    """First theta in (0, 1] where the exit gap crosses zero, or -1 if none.
+def _locate_exit(h, y, f, ynew, fnew, P):
+    """First theta in (0, 1] where the exit gap crosses zero after a Rodas4 step, or -1.
+
+    (``dop853.locate_exit`` does the same on the explicit pair's dense output.)
 
     Scans the step when s(tau) ends above L0 or may have a maximum inside
     (v_x crosses 1), then refines the first bracket by the Illinois method.
@@ -118,7 +117,7 @@ def _locate_exit(h, y, f, ynew, fnew, K, implicit, P):
     ghi = 0.0
     for k in range(1, SCAN_POINTS + 1):
         th = k / SCAN_POINTS
-        g = g1 if k == SCAN_POINTS else _gap_at(th, h, y, f, ynew, fnew, K, implicit, P)
+        g = g1 if k == SCAN_POINTS else _gap_at(th, h, y, f, ynew, fnew, P)
         if g >= 0.0:
             hi = th
             ghi = g
@@ -134,7 +133,7 @@ def _locate_exit(h, y, f, ynew, fnew, K, implicit, P):
         th = (lo * ghi - hi * glo) / (ghi - glo)
         if not (lo < th < hi):
             th = 0.5 * (lo + hi)
-        g = _gap_at(th, h, y, f, ynew, fnew, K, implicit, P)
+        g = _gap_at(th, h, y, f, ynew, fnew, P)
         if g >= 0.0:
             hi, ghi = th, g
             if side == 1:
@@ -302,7 +301,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
             status = OK
         else:
             if implicit:
-                th = _locate_exit(h, y, f, ynew, fnew, K, implicit, P)
+                th = _locate_exit(h, y, f, ynew, fnew, P)
             else:
                 th, extra = dop853.locate_exit(h, y, ynew, K, P, ystage, SCAN_POINTS, FX, FT)
                 stats[ST_RHS] += extra
