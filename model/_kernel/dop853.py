@@ -11,7 +11,7 @@ import numpy as np
 from numba import njit
 from scipy.integrate._ivp import dop853_coefficients as _c
 
-from .rhs import exit_gap, rhs
+from .rhs import exit_gap, rhs, rhs_inline
 from .slots import ERROR_SLOTS, N_ERROR, N_MOTION, N_STATE, TAU, VX, X
 
 ORDER = 8  # the step-size exponent is 1/ORDER (error estimator of order 7)
@@ -42,13 +42,13 @@ def step(y, f, h, P, K, ynew, ystage):
             for j in range(s):
                 acc += A[s, j] * K[j, i]
             ystage[i] = y[i] + h * acc
-        rhs(ystage, P, K[s])
+        rhs_inline(ystage, P, K[s])
     for i in range(N_STATE):
         acc = 0.0
         for j in range(N_STAGES):
             acc += B[j] * K[j, i]
         ynew[i] = y[i] + h * acc
-    rhs(ynew, P, K[N_STAGES])
+    rhs_inline(ynew, P, K[N_STAGES])
 
 
 @njit(cache=True, error_model="numpy", inline="always")
