@@ -4,7 +4,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .driver import N_NODE_COLS, integrate
+from .driver import integrate
+from .record import N_NODE_COLS
 from .rhs import FN, K_R, K_TH, LAM, TH0
 from .slots import D_X, D_Y, I_Y, N_STATE, N_STATS, S_R, S_TH, THETA, VX, VY, W, X, Y
 

@@ -17,11 +17,11 @@ import numpy as np
 from numba import njit
 
 from . import dop853, rodas4
+from .record import N_NODE_COLS, N_SUB, record as _record, record_inside
 from .rhs import copy_into, exit_gap, jacobian, rhs
 from .slots import (ERROR_SLOTS, N_ERROR, N_MOTION, N_STATE, N_STATS, NONFINITE, OK, ST_ACC,
                     ST_ACC_EXPL, ST_ACC_IMPL, ST_JAC, ST_LU, ST_REJ, ST_RHS, ST_SWITCH,
-                    STEP_BUDGET, STEP_UNDERFLOW, TAU, THETA, TIME_BUDGET, VX, VY, W, D_X, D_Y,
-                    X, Y)
+                    STEP_BUDGET, STEP_UNDERFLOW, TAU, TIME_BUDGET, VX, X, Y)
 
 SAFETY = 0.9
 STIFF_HLAMBDA = 6.1  # DOP853 stability boundary on the negative real axis (Hairer's DOP853)
@@ -160,50 +160,6 @@ def _jac_norm(J):
     return big
 
 
-#: State slots recorded at every accepted step (with ``record``): the motion and the
-#: cumulative quadratures of the energy split (Eq. 12), W, D_x, D_y.
-REC_SLOTS = (X, Y, VX, VY, THETA, W, D_X, D_Y)
-N_REC = len(REC_SLOTS)
-N_NODE_COLS = 1 + 2 * N_REC
-
-
-#: Most nodes kept (``record``): a contact of any length stores at most MAX_NODES rows
-#: (4.5 MB). Past it every other node is dropped and only every other step recorded from
-#: then on (the stride doubles), so the nodes stay evenly spread over the whole contact;
-#: contacts of fewer accepted steps keep every step, as before.
-MAX_NODES = 1 << 15
-
-
-@njit(cache=True, error_model="numpy")
-def _record(nodes, count, stride, step, force, y, f):
-    """Append (tau, the REC_SLOTS of y, and their tau-derivatives) to ``nodes`` when
-    accepted step number ``step`` falls on ``stride`` (or ``force``: the last state).
-
-    Returns (nodes, count, stride); node i holds step i * stride."""
-    if step % stride != 0 and not force:
-        return nodes, count, stride
-    if count == nodes.shape[0]:
-        if count >= MAX_NODES:
-            half = (count + 1) // 2
-            for i in range(1, half):
-                copy_into(nodes[i], nodes[2 * i])
-            count = half
-            stride *= 2
-            if step % stride != 0 and not force:
-                return nodes, count, stride
-        else:
-            bigger = np.empty((min(2 * nodes.shape[0], MAX_NODES), nodes.shape[1]))
-            for i in range(count):
-                copy_into(bigger[i], nodes[i])
-            nodes = bigger
-    nodes[count, 0] = y[TAU]
-    for k in range(N_REC):
-        i = REC_SLOTS[k]
-        nodes[count, 1 + k] = y[i]
-        nodes[count, 1 + N_REC + k] = f[i] / f[TAU]  # d/dtau = (d/ds) / w
-    return nodes, count + 1, stride
-
-
 @njit(cache=True, error_model="numpy")
 def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
     """Integrate from y0 until the exit event, a budget, or a failure.
@@ -211,8 +167,9 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
     Returns (status, t, y, stats, r_min, r_max, nodes, n_nodes); status codes are those
     named in ``slots`` (``model.results.Status``); r_min and r_max are the extremes of the distance r from
     the pivot over the accepted steps. ``nodes`` rows are (tau, the ``REC_SLOTS`` of the
-    state, and their tau-derivatives) at the accepted steps when ``record`` is set: every
-    step, or every 2^k-th once there are more than ``MAX_NODES``, and the last one.
+    state, and their tau-derivatives) when ``record`` is set: at the accepted steps and
+    inside the explicit ones (``record.record_inside``), every one or every 2^k-th once
+    there are more than ``MAX_NODES``, and the last state.
     """
     n = N_STATE
     stats = np.zeros(N_STATS, np.int64)
@@ -222,6 +179,9 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
     fnew = np.empty(n)
     err = np.empty(n)
     ystage = np.empty(n)
+    ydense = np.empty(n)  # stage arguments of the dense output (ystage stays for the detector)
+    ysub = np.empty(n if record else 1)
+    fsub = np.empty(n if record else 1)
     b = np.empty(n)
     K = np.zeros((dop853.N_ROWS, n))
     FX = np.empty(dop853.N_POLY)
@@ -232,6 +192,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
     piv = np.zeros(N_MOTION, np.int64)
     rhs(y, P, f)
     implicit = method == 2
+    dense_done = False
     h = _initial_step(y, f, P, rtol, atol, 4 if implicit else 8, ystage, fnew)
     stats[ST_RHS] += 2
     nodes = np.empty((256 if record else 1, N_NODE_COLS))
@@ -280,6 +241,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
             maxfac = 6.0
         else:
             dop853.step(y, f, h, P, K, ynew, ystage)
+            dense_done = False
             stats[ST_RHS] += 12
             en = dop853.error_norm(h, K, y, ynew, rtol, atol)
             expo = 1.0 / dop853.ORDER
@@ -303,8 +265,9 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
             if implicit:
                 th = _locate_exit(h, y, f, ynew, fnew, P)
             else:
-                th, extra = dop853.locate_exit(h, y, ynew, K, P, ystage, SCAN_POINTS, FX, FT)
+                th, extra = dop853.locate_exit(h, y, ynew, K, P, ydense, SCAN_POINTS, FX, FT)
                 stats[ST_RHS] += extra
+                dense_done = extra > 0
             if th > 0.0:
                 # Retake this step exactly to the located exit time.
                 h = th * h
@@ -312,6 +275,13 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
                 continue
         stats[ST_ACC] += 1
         stats[ST_ACC_IMPL if implicit else ST_ACC_EXPL] += 1
+        if record and not implicit:  # nodes inside the step, on its continuous extension
+            if not dense_done:
+                dop853.dense_stages(y, h, P, K, ydense)
+                stats[ST_RHS] += 3
+            nodes, n_nodes, stride = record_inside(nodes, n_nodes, stride,
+                                                   (stats[ST_ACC] - 1) * N_SUB, y, ynew, K, h,
+                                                   FX, ysub, fsub)
         switched = False
         r_new = math.sqrt(ynew[X] * ynew[X] + ynew[Y] * ynew[Y])
         if method == 0 and status < 0 and r_new < PIVOT_EXPLICIT:
@@ -346,7 +316,8 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
         r_min = min(r_min, r_new)
         r_max = max(r_max, r_new)
         if record:
-            nodes, n_nodes, stride = _record(nodes, n_nodes, stride, stats[ST_ACC], False, y, f)
+            nodes, n_nodes, stride = _record(nodes, n_nodes, stride, stats[ST_ACC] * N_SUB,
+                                             False, y, f)
         log_en = math.log(max(en, 1e-300))
         if en == 0.0:
             fac = maxfac
@@ -360,6 +331,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
             fac = min(1.0, fac)
         last_rejected = False
         h *= fac
-    if record and stats[ST_ACC] % stride != 0:  # the last state, off the stride
-        nodes, n_nodes, stride = _record(nodes, n_nodes, stride, stats[ST_ACC], True, y, f)
+    if record and (stats[ST_ACC] * N_SUB) % stride != 0:  # the last state, off the stride
+        nodes, n_nodes, stride = _record(nodes, n_nodes, stride, stats[ST_ACC] * N_SUB, True,
+                                         y, f)
     return status, y[TAU], y, stats, r_min, r_max, nodes, n_nodes
