@@ -92,6 +92,56 @@ def _hermite(y0, f0, y1, f1, h, th, i):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
+def _hermite_slope(y0, f0, y1, f1, h, th, i):
+    """d/dtheta of ``_hermite`` (component i)."""
+    return ((6 * th * th - 6 * th) * (y0[i] - y1[i]) + (3 * th * th - 4 * th + 1) * h * f0[i]
+            + (3 * th * th - 2 * th) * h * f1[i])
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _radial_rate(y0, f0, y1, f1, h, th):
+    """(r dr/dtheta, r) on the cubic Hermite interpolant of x and y over the step."""
+    x = _hermite(y0, f0, y1, f1, h, th, X)
+    yy = _hermite(y0, f0, y1, f1, h, th, Y)
+    return (x * _hermite_slope(y0, f0, y1, f1, h, th, X)
+            + yy * _hermite_slope(y0, f0, y1, f1, h, th, Y)), math.sqrt(x * x + yy * yy)
+
+
+@njit(cache=True, error_model="numpy")
+def _r_inside(y0, f0, y1, f1, h):
+    """r at an extremum of r inside the step (r dr/ds changes sign), or -1 if none.
+
+    The accepted steps alone would miss a turning point of r by up to the step's length:
+    r_min and r_max are refined on the cubic Hermite interpolant of x and y (error O(h^4))
+    by the Illinois method on r dr/dtheta."""
+    glo = y0[X] * f0[X] + y0[Y] * f0[Y]
+    ghi = y1[X] * f1[X] + y1[Y] * f1[Y]
+    if not (glo * ghi < 0.0):
+        return -1.0
+    lo, hi = 0.0, 1.0
+    r = -1.0
+    side = 0
+    for _ in range(60):
+        th = (lo * ghi - hi * glo) / (ghi - glo)
+        if not (lo < th < hi):
+            th = 0.5 * (lo + hi)
+        g, r = _radial_rate(y0, f0, y1, f1, h, th)
+        if g == 0.0 or hi - lo <= 1e-12:
+            break
+        if (g < 0.0) == (glo < 0.0):
+            lo, glo = th, g
+            if side == -1:
+                ghi *= 0.5
+            side = -1
+        else:
+            hi, ghi = th, g
+            if side == 1:
+                glo *= 0.5
+            side = 1
+    return r
+
+
+@njit(cache=True, error_model="numpy", inline="always")
 def _gap_at(th, h, y, f, ynew, fnew, P):
     x = _hermite(y, f, ynew, fnew, h, th, X)
     tau = _hermite(y, f, ynew, fnew, h, th, TAU)
@@ -165,8 +215,9 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
     """Integrate from y0 until the exit event, a budget, or a failure.
 
     Returns (status, t, y, stats, r_min, r_max, nodes, n_nodes); status codes are those
-    named in ``slots`` (``model.results.Status``); r_min and r_max are the extremes of the distance r from
-    the pivot over the accepted steps. ``nodes`` rows are (tau, the ``REC_SLOTS`` of the
+    named in ``slots`` (``model.results.Status``); r_min and r_max are the extremes of the
+    distance r from the pivot over the contact (at the accepted steps and the turning
+    points of r inside them, ``_r_inside``). ``nodes`` rows are (tau, the ``REC_SLOTS`` of the
     state, and their tau-derivatives) when ``record`` is set: at the accepted steps and
     inside the explicit ones (``record.record_inside``), every one or every 2^k-th once
     there are more than ``MAX_NODES``, and the last state.
@@ -310,6 +361,10 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
             stiff = 0
             nonstiff = 0
             easy = 0
+        r_in = _r_inside(y, f, ynew, fnew, h)
+        if r_in >= 0.0:
+            r_min = min(r_min, r_in)
+            r_max = max(r_max, r_in)
         t += h
         copy_into(y, ynew)
         copy_into(f, fnew)
