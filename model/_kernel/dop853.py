@@ -12,7 +12,7 @@ E3_WEIGHT. Where the motion crosses the steep part of mu(v) near v_R ~ 1/zeta, t
 combined estimate with DOP853's weight can be far below the step's true error (the large
 3rd-order estimate in the denominator shrinks it): in 30 551 steps over the four regimes
 (13 orientations, beta = 1 and 0.234, rtol 1e-5 to 1e-7) 133 accepted steps had a local
-error above the tolerance (true/tol up to ~500; one of them put tau_out of the slider at
+error above the tolerance (true/tol up to ~500; such a step put tau_out of the slider at
 theta0 = 300 deg, beta = 0.234, off by 2.5e-4 at rtol 1e-6). With 0.001 that count halves
 (61 of 33 358) for ~8 % more right-hand-side evaluations at equal rtol. Rare steps with
 errors above 10 tol remain (about 2 in 10 000 steps; the 5(4) pair's estimator: 1 in
