@@ -6,8 +6,9 @@
 * Panel's reader of the page address is guarded (``app.urlstate.panel_query``): a value it
   cannot convert, such as 4301 digits, would otherwise stop the page from syncing.
 * Every response carries ``SECURITY_HEADERS``: no other site may frame the dashboard
-  (clickjacking), and browsers take each file as the type the server declares. An empty
-  ``bokeh-session-id`` in the address is dropped (Bokeh would answer 500).
+  (clickjacking), and browsers take each file as the type the server declares. A
+  ``bokeh-session-id`` in the address that Bokeh would read as empty is dropped (Bokeh
+  would answer 500).
 """
 from app.jobs import start_warm_up
 from app.urlstate import panel_query
@@ -53,13 +54,23 @@ def add_security_headers() -> None:
 
 
 def _drop_empty_session_id(handler) -> None:
-    """An empty ``bokeh-session-id`` in the address (``?bokeh-session-id=``) makes Bokeh
-    raise "Session ID must not be empty" and answer 500; without it the page gets a new
-    session, as for any address without one."""
+    """A ``bokeh-session-id`` in the address that Bokeh reads as empty makes it raise
+    "Session ID must not be empty" and answer 500; without it the page gets a new session,
+    as for any address without one. Bokeh reads the last value as Tornado's
+    ``get_argument`` gives it: control characters made spaces, then stripped (so
+    ``?bokeh-session-id=%00`` is empty too)."""
+    from tornado.web import RequestHandler
+
     request = getattr(handler, "request", None)
+    control = RequestHandler._remove_control_chars_regex
     for args in (getattr(request, "query_arguments", None), getattr(request, "arguments", None)):
-        if args is not None and "bokeh-session-id" in args \
-                and not any(value.strip() for value in args["bokeh-session-id"]):
+        values = args.get("bokeh-session-id") if args is not None else None
+        if not values:
+            continue
+        last = values[-1]
+        if isinstance(last, bytes):
+            last = last.decode("utf-8", errors="replace")
+        if not control.sub(" ", last).strip():
             del args["bokeh-session-id"]
 
 

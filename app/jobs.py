@@ -128,6 +128,29 @@ class WorkPool:
         with self._lock:
             return self.lanes[lane]._executor()
 
+    def idle(self) -> bool:
+        """Whether no job is queued, running or in flight in any lane."""
+        with self._lock:
+            return not self._inflight and all(
+                not r.queued() and not r.running for r in self.lanes.values())
+
+    def recycle_workers(self) -> bool:
+        """Replace every started lane's worker processes by fresh ones, if the pool is
+        idle (else nothing; False). A worker keeps what a class's work left in its heap
+        and the model's caches (``model.support``, ``model.uniform``: tens of MB after a
+        class of thirty); fresh workers load the compiled kernel from numba's cache and
+        are as small as at the server's start. The old ones finish and exit; the new
+        ones start at once, so the next page does not wait for them."""
+        with self._lock:
+            if not self.idle():
+                return False
+            for runner in self.lanes.values():
+                if runner.executor is not None:
+                    old, runner.executor = runner.executor, None
+                    old.shutdown(wait=False, cancel_futures=True)
+                    runner._executor()
+            return True
+
     def shutdown(self) -> None:
         for runner in self.lanes.values():
             if runner.executor is not None:

@@ -113,26 +113,62 @@ _RELEASE_TIMER: threading.Timer | None = None
 _RELEASE_LOCK = threading.Lock()
 
 
-def release_memory() -> None:
+def release_memory(sessions_open=None) -> dict:
     """Collect garbage and hand the heap's free pages back to the system (glibc's
     ``malloc_trim``; elsewhere a no-op): CPython's allocator otherwise keeps the memory
-    of ended sessions for reuse, and the server stays at its peak after a class left."""
+    of ended sessions for reuse, and the server stays at its peak after a class left.
+
+    When no session is open any more (``sessions_open()`` is 0) and no work is waiting,
+    the shared results are cut down to ``app.result_cache.IDLE_CACHE_BYTES`` and the
+    worker processes are replaced by fresh ones (``WorkPool.recycle_workers``), so the
+    server and its workers are back near their size at the start. Returns what was done.
+    """
+    done = {"idle": False, "recycled": False, "cache_bytes": None}
+    if sessions_open is not None and _count(sessions_open) == 0:
+        from .jobs import work_pool
+
+        pool = work_pool()
+        if pool.idle():
+            done["idle"] = True
+            pool.cache.shrink()
+            done["cache_bytes"] = pool.cache.nbytes
+            done["recycled"] = pool.recycle_workers()
     gc.collect()
     try:
         ctypes.CDLL(None).malloc_trim(0)
     except (OSError, AttributeError):  # not glibc
         pass
+    return done
 
 
-def schedule_release() -> None:
-    """``release_memory`` once no session has ended for ``RELEASE_DELAY_S`` seconds."""
+def _count(sessions_open) -> int:
+    try:
+        return int(sessions_open())
+    except Exception:  # the server is going away: do nothing more
+        return -1
+
+
+def schedule_release(sessions_open=None) -> None:
+    """``release_memory(sessions_open)`` once no session has ended for
+    ``RELEASE_DELAY_S`` seconds. ``sessions_open``: how many sessions the server still
+    has (a callable; e.g. ``sessions_of(session_context)``)."""
     global _RELEASE_TIMER
     with _RELEASE_LOCK:
         if _RELEASE_TIMER is not None:
             _RELEASE_TIMER.cancel()
-        _RELEASE_TIMER = threading.Timer(RELEASE_DELAY_S, release_memory)
+        _RELEASE_TIMER = threading.Timer(RELEASE_DELAY_S, release_memory, (sessions_open,))
         _RELEASE_TIMER.daemon = True
         _RELEASE_TIMER.start()
+
+
+def sessions_of(session_context):
+    """A callable counting the sessions the Bokeh server of ``session_context`` still
+    has (for ``schedule_release``); it keeps the server's context only, not the ended
+    session's."""
+    server = getattr(session_context, "server_context", None)
+    if server is None:
+        return None
+    return lambda: len(list(server.sessions))
 
 
 _GATE = PageGate()

@@ -10,6 +10,10 @@ CACHE_SIZE = 2048
 #: ... and this many bytes (as pickled: a single support with its 400-sample trajectory
 #: is ~35 kB, a polar sweep ~20 kB), so what a class leaves behind stays small.
 CACHE_BYTES = 32 * 2**20
+#: ... cut down to this many bytes, the most recently used, once no session is open any
+#: more (``app.pages.release_memory``): what the next class may reuse, while the server
+#: goes back near its size at the start.
+IDLE_CACHE_BYTES = 4 * 2**20
 
 
 def _nbytes(value) -> int:
@@ -47,6 +51,13 @@ class ResultCache:
             self._data[key], self._sizes[key] = value, size
             self._data.move_to_end(key)
             while len(self._data) > self.maxsize or self.nbytes > self.max_bytes:
+                old, _ = self._data.popitem(last=False)
+                self.nbytes -= self._sizes.pop(old)
+
+    def shrink(self, max_bytes: int = IDLE_CACHE_BYTES) -> None:
+        """Drop the least recently used results until at most ``max_bytes`` remain."""
+        with self._lock:
+            while self._data and self.nbytes > max_bytes:
                 old, _ = self._data.popitem(last=False)
                 self.nbytes -= self._sizes.pop(old)
 

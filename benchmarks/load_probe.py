@@ -78,6 +78,51 @@ def _tree_rss_proc(pid: int) -> dict:
     return out
 
 
+def worker_pids(pid: int) -> set[int]:
+    """The pids of the server's worker processes (``multiprocessing`` spawned children,
+    not its resource tracker)."""
+    found, order = set(), [pid]
+    children: dict[int, list[int]] = {}
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                ppid = int(Path(f"/proc/{entry}/stat").read_text().rsplit(")", 1)[1].split()[1])
+            except (OSError, IndexError, ValueError):
+                continue
+            children.setdefault(ppid, []).append(int(entry))
+    for p in order:
+        order.extend(children.get(p, []))
+        try:
+            cmd = Path(f"/proc/{p}/cmdline").read_bytes()
+        except OSError:
+            continue
+        if p != pid and b"spawn_main" in cmd:
+            found.add(p)
+    return found
+
+
+def settled_rss_mb(pid: int, processes: int | None = None, timeout_s: float = 60.0,
+                   steady_mb: float = 2.0) -> dict:
+    """``tree_rss_mb`` once the server's worker processes have started and loaded the
+    kernel: the process count stays the same (and equals ``processes`` when given, its
+    count at the start) and the total changes by less than ``steady_mb`` over three
+    samples 1 s apart. The server starts its workers in the background, and replaces idle
+    ones after the class left (``app.pages.release_memory``); fresh ones take a few seconds
+    to load. After ``timeout_s`` the last reading, as it is."""
+    deadline = time.monotonic() + timeout_s
+    readings = [tree_rss_mb(pid)]
+    while time.monotonic() < deadline:
+        time.sleep(1.0)
+        readings = (readings + [tree_rss_mb(pid)])[-3:]
+        totals = [r["total"] for r in readings]
+        counts = {r["processes"] for r in readings}
+        if len(readings) == 3 and len(counts) == 1 \
+                and processes in (None, readings[-1]["processes"]) \
+                and max(totals) - min(totals) < steady_mb:
+            break
+    return readings[-1]
+
+
 def server_pid(port: int) -> int:
     """The pid of our ``panel serve`` child listening on ``port``."""
     for entry in os.listdir("/proc"):

@@ -66,6 +66,26 @@ def test_the_busy_page_reloads_itself():
                      html), "the busy page does not reload itself when the browser has it"
 
 
+def test_the_liveness_probe_builds_no_dashboard(monkeypatch):
+    """Panel's ``/liveness?endpoint=/app`` runs the page script on the event loop with no
+    browser session: no dashboard is built (and held on the loop) for nobody, and the
+    probe takes no place in the page gate."""
+    import panel as pn
+    from bokeh.document import Document
+    from panel.io.state import set_curdoc
+
+    import app.main as page_script
+    from app.pages import page_gate
+
+    built = []
+    monkeypatch.setattr(page_script.Dashboard, "from_session",
+                        classmethod(lambda cls: built.append(cls) or pn.pane.Markdown("")))
+    before = page_gate().unopened(None)
+    with set_curdoc(Document()):
+        page_script.serve()
+    assert built == [] and page_gate().unopened(None) == before
+
+
 def test_a_page_never_opened_stops_counting_after_the_window():
     gate = PageGate(max_unopened=1, window_s=0.2)
     assert gate.admit(None, 1) and not gate.admit(None, 2)

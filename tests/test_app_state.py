@@ -341,3 +341,22 @@ def test_csv_downloads(dashboard):
     assert "k_r: 3.0" in text
     polar = dashboard._polar_csv().getvalue()
     assert "FTx_over_mu0FN" in polar
+
+
+def test_the_page_builds_without_sizing_warnings(caplog):
+    """Every container of every tab says how it stretches: Panel overrides none of them
+    (each override logs a warning at every page build of a served class)."""
+    import logging
+
+    import panel as pn
+    from bokeh.document import Document
+
+    from app.urlstate import TABS
+    from app.views import Dashboard
+
+    page = Dashboard(ExplorerState())
+    for tab in TABS:
+        page._build(tab)  # the view, without computing its results
+    with caplog.at_level(logging.WARNING):
+        pn.panel(page).get_root(Document())
+    assert "overridden" not in caplog.text, caplog.text

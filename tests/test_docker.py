@@ -1,12 +1,5 @@
 """The Dockerfile: linted and checked against the project (its build and start replayed
-outside Docker: tests/test_docker_replay.py).
-
-These machines have no Docker engine, so the image is never built here. The tests read the
-Dockerfile instead and replay it with the same files, commands and environment: the COPY
-steps (through .dockerignore) into a temporary root, the project's install (without its
-dependencies, which this environment already has), the build-time warm-up, then the CMD,
-probed with the HEALTHCHECK command itself. Paths of the image are mapped into the
-temporary root and the port 5006 to a free one; nothing else is changed.
+outside Docker, where these machines have no Docker engine: tests/test_docker_replay.py).
 """
 from __future__ import annotations
 

@@ -192,10 +192,14 @@ def test_a_sweep_on_a_broken_disk_cache_computes_with_one_warning(
 
 
 def test_a_second_copy_of_the_app_shares_the_workers(monkeypatch):
-    """Panel's liveness endpoint builds the app a second time in the server process: both
-    copies must hand their work to the same worker processes, not start their own."""
+    """The page script run by a second handler of the app (as ``panel serve`` with several
+    app paths, or an autoreload, does) builds its pages on the same worker processes as
+    the first, not on workers of its own."""
+    import weakref
+
     from bokeh.application.handlers.directory import DirectoryHandler
     from bokeh.document import Document
+    from bokeh.server.contexts import BokehSessionContext
 
     from app.views import Dashboard
 
@@ -206,10 +210,16 @@ def test_a_second_copy_of_the_app_shares_the_workers(monkeypatch):
     monkeypatch.setattr(Dashboard, "from_session",
                         classmethod(lambda cls: built.append(original(cls)) or built[-1]))
     executors = {name: pool.executor(name) for name in jobs.LANES}
-    for _ in range(2):
+    for copy in range(2):
         handler = DirectoryHandler(filename=str(app_dir))
         assert not handler.failed, handler.error
         doc = Document()
+        # A browser session behind the page (without one, the script builds nothing: that
+        # is Panel's liveness probe).
+        context = BokehSessionContext(f"copy-{copy}", None, doc)
+        context._request = type("Request", (), {"arguments": {}, "remote_ip": "127.0.0.1",
+                                                "cookies": {}, "headers": {}})()
+        doc._session_context = weakref.ref(context)
         handler.modify_document(doc)
         assert not handler.failed, handler.error
     assert len(built) == 2  # the page was built twice ...

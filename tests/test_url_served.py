@@ -75,7 +75,9 @@ def test_served_app_survives_fuzzed_queries(served, pairs, raw):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("query", ["bokeh-session-id=", "bokeh-session-id=%20&k_r=0.5",
-                                   "bokeh-session-id=&bokeh-session-id="])
+                                   "bokeh-session-id=&bokeh-session-id=",
+                                   "bokeh-session-id=%00", "bokeh-session-id=x&bokeh-session-id=",
+                                   "bokeh-session-id=%01%1f%20"])
 def test_an_empty_session_id_gets_a_new_session(served, query):
     """Found by the fuzzing above: Bokeh answered 500 ("Session ID must not be empty")."""
     base, log = served

@@ -60,7 +60,7 @@ def design_map_figure(regime_map, point: dict | None = None, width: int = 330,
                       height: int = 300):
     """Fig. 5a with the design's point and speed line (see the module docstring)."""
     fig = regime_map_figure(regime_map, "5a", "paper", None, width, height)
-    fig.title.text = "The design on Fig. 5a (uniform arrays, F_N = 1)"
+    fig.title.text = "The design on Fig. 5a (F_N = 1)"  # fits the narrow plot
     data, xr, yr = design_map_data(point)
     fig.x_range = Range1d(*xr)
     fig.y_range = Range1d(*yr)

@@ -105,7 +105,7 @@ class RegimeMapView(pn.viewable.Viewer):
             pn.pane.Bokeh(self.figure, sizing_mode="stretch_both",
                           css_classes=["figure", "figure-regime_map"]),
             pn.Column(self.toggle, self.info, css_classes=["side-column"], margin=0),
-            css_classes=["map-view"], margin=0, sizing_mode="stretch_width",
+            css_classes=["map-view"], margin=0, sizing_mode="stretch_both",
             stylesheets=[FIGURE_AND_TEXT])
 
 
@@ -187,5 +187,5 @@ class LoadView(pn.viewable.Viewer):
             "marker: the current F_N (the readout of the One support tab).",
             sizing_mode="stretch_width", styles={"font-size": "0.92em"}),
             css_classes=["side-column"], margin=0),
-            css_classes=["load-view"], margin=0, sizing_mode="stretch_width",
+            css_classes=["load-view"], margin=0, sizing_mode="stretch_both",
             stylesheets=[FIGURE_AND_TEXT])

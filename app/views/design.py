@@ -353,9 +353,9 @@ class DesignView(pn.viewable.Viewer):
             pn.Row(self.optimise_button, self.cancel_button, margin=0),
             self.optimum_text, width=345)
         figures = pn.Column(self.map_pane, self.polar_pane, margin=0,
-                            sizing_mode="stretch_width", css_classes=["design-figures"],
+                            sizing_mode="stretch_both", css_classes=["design-figures"],
                             stylesheets=[grid_css("minmax(0, 1fr)",
                                                   "minmax(0, 1fr) minmax(0, 1fr)",
                                                   phone_height=360, min_height=600)])
         return pn.Row(left, figures, right, css_classes=["design-view"],
-                      sizing_mode="stretch_width", stylesheets=[DESIGN_ROW_CSS])
+                      sizing_mode="stretch_both", stylesheets=[DESIGN_ROW_CSS])

@@ -46,6 +46,8 @@ TAB_TITLES = ("One support", "Array", "Orientation (polar)", "Regime map", "Load
 TAB_FIGURES = ("Figs. 3, 7, Eq. 12", "Figs. 2a, 4", "Fig. 11", "Fig. 5", "Fig. 6", "Eqs. 3-13",
                "Eq. 5 in physical units, Figs. 5a, 11a")
 URL_DELAY_MS = 400
+#: Tabs whose figures fill the window (their views stretch both ways).
+FILL_TABS = ("polar", "map", "load", "design")
 PROJECTOR_STYLES, SCREEN_STYLES = ROOT_PROJECTOR, ROOT_SCREEN
 #: Width of the controls (px) on a screen and in projector mode, and folded away.
 SIDEBAR_WIDTH = {False: 290, True: 340}
@@ -92,9 +94,11 @@ class Dashboard(pn.viewable.Viewer):
             "equations": ("equations", EquationsView),
             "design": ("design", lambda: DesignView(**views))}
         # On a phone a tab is never wider than the screen, whatever its desktop layout.
-        self._holders = {tab: pn.Column(sizing_mode="stretch_width", margin=0,
-                                        stylesheets=[SHRINK_CSS])
-                         for tab in self._builders}
+        # Views of figures that fill the window stretch both ways, and so do their holders
+        # (said here, Panel does not override them with a warning at each page build).
+        self._holders = {tab: pn.Column(
+            sizing_mode="stretch_both" if tab in FILL_TABS else "stretch_width", margin=0,
+            stylesheets=[SHRINK_CSS]) for tab in self._builders}
         self.downloads = [
             pn.widgets.FileDownload(callback=self._trajectory_csv, filename="trajectory.csv",
                                     label="Trajectory CSV", css_classes=["download-trajectory"],
@@ -134,11 +138,11 @@ class Dashboard(pn.viewable.Viewer):
         self.dismiss.on_click(self._dismiss)
         self.tabs = pn.Tabs(
             (TAB_TITLES[0], pn.Row(self.support, self.readouts, css_classes=["support-tab"],
-                                   sizing_mode="stretch_width", margin=0,
+                                   sizing_mode="stretch_both", margin=0,
                                    stylesheets=[SIDE_ROW_CSS])),
             *((title, self._holders[tab]) for title, tab in zip(TAB_TITLES[1:], TABS[1:])),
             active=TABS.index(state.tab), dynamic=False, css_classes=["main-tabs"],
-            sizing_mode="stretch_width", margin=0,
+            sizing_mode="stretch_both", margin=0,
             stylesheets=[".bk-header {display: none;}", SHRINK_CSS])
         # The tab bar: buttons, so the views are reachable with the keyboard (Tab, Space).
         self.tab_bar = pn.widgets.RadioButtonGroup.from_param(
@@ -300,12 +304,14 @@ class Dashboard(pn.viewable.Viewer):
         main = pn.Column(self.preparing,
                          pn.Row(self.alert, self.dismiss, sizing_mode="stretch_width",
                                 stylesheets=[SHRINK_CSS]),
-                         self.headline, self.tabs, sizing_mode="stretch_width", margin=0,
+                         self.headline, self.tabs, sizing_mode="stretch_both", margin=0,
                          css_classes=["main-area"], stylesheets=[SHRINK_CSS])
-        self._root = pn.Column(header, pn.Row(self.sidebar, main, sizing_mode="stretch_width",
+        # stretch_both down to the support's figures (which stretch both ways): said here,
+        # Panel does not override the containers with a warning at each page build.
+        self._root = pn.Column(header, pn.Row(self.sidebar, main, sizing_mode="stretch_both",
                                               css_classes=["page-body"],
                                               stylesheets=[BODY_CSS]),
-                               self.behaviour, sizing_mode="stretch_width",
+                               self.behaviour, sizing_mode="stretch_both",
                                styles=self._root_styles, css_classes=["dashboard"],
                                stylesheets=[ROOT_CSS])
         return self._root

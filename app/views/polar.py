@@ -133,7 +133,7 @@ class PolarView(pn.viewable.Viewer):
                           sizing_mode="stretch_width", margin=0)
         return pn.Column(
             *self.panes, notes, css_classes=["polar-view"], margin=0,
-            sizing_mode="stretch_width",
+            sizing_mode="stretch_both",
             stylesheets=[grid_css("repeat(3, minmax(0, 1fr))", "minmax(0, 1fr) auto",
                                   {"polar-notes": "1 / span 3"}, phone_height=400)])
 

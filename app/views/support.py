@@ -182,11 +182,13 @@ class SupportView(pn.viewable.Viewer):
 
     def __panel__(self):
         scene, forces, friction, energy = self._panes
+        # stretch_both as the figures inside are (Panel would otherwise override a
+        # stretch_width container, with a warning, at every page build).
         player = pn.Row(self._player_pane, self.spinner, css_classes=["player-row"],
-                        sizing_mode="stretch_width", margin=0)
+                        sizing_mode="stretch_both", margin=0)
         return pn.Column(
             scene, forces, player, friction, energy, css_classes=["support-view"],
-            margin=0, sizing_mode="stretch_width",
+            margin=0, sizing_mode="stretch_both",
             stylesheets=[grid_css("minmax(0, 1fr) minmax(0, 1fr)",
                                   "minmax(0, 3fr) auto minmax(0, 2fr)",
                                   {"player-row": "1 / span 2"})])

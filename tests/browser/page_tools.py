@@ -371,13 +371,14 @@ def model_value(page, type_pattern: str, attribute: str = "value", css_class: st
         }""", [type_pattern, attribute, css_class])
 
 
-def wait_for(page, predicate, timeout_s: float = 20.0, what: str = "condition") -> None:
-    """Poll ``predicate()`` every 100 ms of page time; fail the test (naming ``what``) after
-    ``timeout_s`` seconds."""
+def wait_for(page, predicate, timeout_s: float = 20.0, what="condition") -> None:
+    """Poll ``predicate()`` every 100 ms of page time; fail the test (naming ``what``, or
+    what ``what()`` says then) after ``timeout_s`` seconds."""
     import pytest
 
     deadline = time.monotonic() + timeout_s
     while not predicate():
         if time.monotonic() > deadline:
+            what = what() if callable(what) else what
             pytest.fail(f"timed out after {timeout_s:.0f} s waiting for {what}", pytrace=False)
         page.wait_for_timeout(100)

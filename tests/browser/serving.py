@@ -54,7 +54,7 @@ def serve_app(log_path: Path, app_dir: str = "app", timeout_s: float = 60.0, war
     """Run ``panel serve <app_dir>`` from the repository root on a free loopback port.
 
     Compiles the model's kernel first (``python -m model warmup``), waits until
-    ``/liveness?endpoint=/<app>`` answers 200 (the server built a document of the app), yields
+    ``/liveness?endpoint=/<app>`` answers 200 (the server ran the app's page script), yields
     the base URL (``http://127.0.0.1:<port>``) and stops the server on exit. The server's
     output goes to ``log_path``. Raises ``ServerError`` (with the log's tail) otherwise.
     ``extra_args`` are appended to the ``panel serve`` command line.

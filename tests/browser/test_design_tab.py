@@ -127,7 +127,9 @@ def _wait_readout(page, predicate, what: str) -> float:
     def ready():
         value["x"] = _readout(page)
         return value["x"] is not None and predicate(value["x"])
-    pt.wait_for(page, ready, timeout_s=90.0, what=what)
+    # On failure, name what the page showed last (a stale value, an error, "Updating").
+    pt.wait_for(page, ready, timeout_s=90.0, what=lambda: "{}; the readouts showed: {!r}".format(
+        what, " | ".join(page.locator(".design-readouts").all_inner_texts())))
     return value["x"]
 
 
@@ -166,13 +168,15 @@ def test_the_distribution_editor_redraws_the_density_and_the_readouts(page, page
 
     page.locator(".ctl-dist_family select").first.select_option(label="pair ±θ₀")
     _set_number(page, "ctl-dist_deg", "40")
-    pt.wait_for(page, lambda: _density_peak(page)[1] == 0 and len(
-        pt.read_source(page, "design_atoms")["xs"]) == 2, timeout_s=30.0,
-        what="the pair drawn as two spokes instead of a density")
-    spokes = pt.read_source(page, "design_atoms")
-    angles = sorted(round(math.degrees(math.atan2(ys[1], xs[1]))) for xs, ys in
-                    zip(spokes["xs"], spokes["ys"]))
-    assert angles == [-40, 40]
+
+    def spokes() -> list:
+        atoms = pt.read_source(page, "design_atoms")
+        return sorted(round(math.degrees(math.atan2(ys[1], xs[1]))) for xs, ys in
+                      zip(atoms["xs"], atoms["ys"]))
+    # The family's change may be drawn first (the pair at the former 30 deg), then 40 deg.
+    pt.wait_for(page, lambda: _density_peak(page)[1] == 0 and spokes() == [-40, 40],
+                timeout_s=30.0, what=lambda: "the pair drawn as two spokes at +-40 deg instead "
+                f"of a density; drawn: {spokes()}, density peak {_density_peak(page)}")
     pair = _wait_readout(page, lambda x: x not in (first, at_30), "the pair's readouts")
     pt.wait_for(page, lambda: "dist=pair" in page.url and "dist_deg=40" in page.url,
                 timeout_s=10.0, what="the pair in the link")
