@@ -5,7 +5,7 @@ DOP853); read from scipy's copy at import. The error estimate combines the 5th- 
 3rd-order embedded solutions as DOP853 does, err5^2 / sqrt(err5^2 + E3_WEIGHT err3^2),
 with the 3rd-order weight E3_WEIGHT = 0.001 instead of DOP853's 0.01 (see below). The
 dense output needs three more stages, taken only for a step in which the exit may lie
-(``locate_exit``) and, in recording runs, for the nodes inside every step
+(``event.locate_exit``) and, in recording runs, for the nodes inside every step
 (``record.record_inside``).
 
 E3_WEIGHT. Where the motion crosses the steep part of mu(v) near v_R ~ 1/zeta, the
@@ -24,8 +24,8 @@ import numpy as np
 from numba import njit
 from scipy.integrate._ivp import dop853_coefficients as _c
 
-from .rhs import exit_gap, rhs, rhs_inline
-from .slots import ERROR_SLOTS, N_ERROR, N_MOTION, N_STATE, TAU, VX, X
+from .rhs import rhs, rhs_inline
+from .slots import ERROR_SLOTS, N_ERROR, N_MOTION, N_STATE
 
 ORDER = 8  # the step-size exponent is 1/ORDER (error estimator of order 7)
 N_STAGES = _c.N_STAGES  # 12, plus f(y1) (FSAL)
@@ -155,52 +155,3 @@ def stiffness_ratio(h, K, ynew, ystage):
     if den <= 0.0:
         return 0.0
     return h * math.sqrt(num / den)
-
-
-@njit(cache=True, error_model="numpy")
-def locate_exit(h, y, ynew, K, P, ystage, scan_points, FX, FT):
-    """First theta in (0, 1] where the exit gap crosses zero on the dense output, or
-    -1 if none (as ``driver._locate_exit``). Returns (theta, extra RHS evaluations)."""
-    g1 = exit_gap(ynew[TAU], ynew[X], P)
-    may_peak = (y[VX] < 1.0) and (ynew[VX] > 1.0)  # v_x crosses 1: s(tau) may peak
-    if g1 < 0.0 and not may_peak:
-        return -1.0, 0
-    dense_stages(y, h, P, K, ystage)
-    poly(y, ynew, K, h, X, FX)
-    poly(y, ynew, K, h, TAU, FT)
-    lo = 0.0
-    glo = exit_gap(y[TAU], y[X], P)
-    hi = -1.0
-    ghi = 0.0
-    for k in range(1, scan_points + 1):
-        th = k / scan_points
-        g = g1 if k == scan_points else exit_gap(poly_at(y[TAU], FT, th), poly_at(y[X], FX, th), P)
-        if g >= 0.0:
-            hi = th
-            ghi = g
-            break
-        lo = th
-        glo = g
-    if hi < 0.0:
-        return -1.0, 3
-    side = 0
-    for _ in range(200):
-        if hi - lo <= 4e-16 * hi:
-            break
-        th = (lo * ghi - hi * glo) / (ghi - glo)
-        if not (lo < th < hi):
-            th = 0.5 * (lo + hi)
-        g = exit_gap(poly_at(y[TAU], FT, th), poly_at(y[X], FX, th), P)
-        if g >= 0.0:
-            hi, ghi = th, g
-            if side == 1:
-                glo *= 0.5
-            side = 1
-        else:
-            lo, glo = th, g
-            if side == -1:
-                ghi *= 0.5
-            side = -1
-        if g == 0.0:
-            break
-    return hi, 3

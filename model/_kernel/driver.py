@@ -1,30 +1,37 @@
 """Adaptive integration of one contact until the exit event of Eq. (9).
 
-Methods: 1 = explicit DOP853 (Dormand-Prince 8(5,3)), 2 = implicit Rodas4, 0 = automatic:
-start explicit, switch to Rodas4 when the stiffness detector of Hairer & Wanner
-(IV.2) fires repeatedly, and back when h ||J|| shows the explicit pair would be
-stable at the current step.
+Methods: 1 = explicit, 2 = implicit Rodas4, 0 = automatic: start explicit, switch to
+Rodas4 when the stiffness detector of Hairer & Wanner (IV.2) fires repeatedly, and back
+when h ||J|| shows the explicit pair would be stable at the current step.
 
-The exit is located on the dense output of the accepted step (first crossing of
-s(tau) = L0, scanning the step when s may cross and re-cross: DOP853's 7th-order
-output, cubic Hermite after a Rodas4 step), then the step is
-retaken exactly to the located time, so the exit state has the method's full
-accuracy rather than the interpolant's.
+The explicit pair follows the requested rtol (``use_dop853``): DOP853 (Dormand-Prince
+8(5,3)) at rtol <= DOP853_RTOL, Dormand-Prince 5(4) above it, each where it costs least
+at equal exit-state error (docs/model.md, "Solvers").
+
+The exit is located on the dense output of the accepted step (``event.locate_exit``:
+first crossing of s(tau) = L0, scanning the step when s may cross and re-cross), then
+the step is retaken exactly to the located time, so the exit state has the method's
+full accuracy rather than the interpolant's.
 """
 import math
 
 import numpy as np
 from numba import njit
 
-from . import dop853, rodas4
+from . import dop853, dopri5, event, rodas4
 from .record import N_NODE_COLS, N_SUB, record as _record, record_inside
-from .rhs import copy_into, exit_gap, jacobian, rhs
+from .rhs import copy_into, jacobian, rhs
 from .slots import (ERROR_SLOTS, N_ERROR, N_MOTION, N_STATE, N_STATS, NONFINITE, OK, ST_ACC,
                     ST_ACC_EXPL, ST_ACC_IMPL, ST_JAC, ST_LU, ST_REJ, ST_RHS, ST_SWITCH,
-                    STEP_BUDGET, STEP_UNDERFLOW, TAU, TIME_BUDGET, VX, X, Y)
+                    STEP_BUDGET, STEP_UNDERFLOW, TAU, TIME_BUDGET, X, Y)
 
+#: The explicit pair is DOP853 at a requested rtol <= DOP853_RTOL and Dormand-Prince 5(4)
+#: above it (measured crossover: docs/model.md, "Solvers").
+DOP853_RTOL = 1e-6
 SAFETY = 0.9
-STIFF_HLAMBDA = 6.1  # DOP853 stability boundary on the negative real axis (Hairer's DOP853)
+# Stability boundaries on the negative real axis (Hairer's DOPRI5 and DOP853 codes).
+STIFF_HLAMBDA_DP5 = 3.25
+STIFF_HLAMBDA_DP8 = 6.1
 STIFF_COUNT = 15
 NONSTIFF_HNORM = 2.0  # back to explicit when h ||J||_inf stays below this
 NONSTIFF_COUNT = 5
@@ -33,9 +40,15 @@ NONSTIFF_COUNT = 5
 PIVOT_EXPLICIT = 1e-3
 SCAN_POINTS = 8
 # PI step-size control (Gustafsson; Hairer & Wanner I, IV.2): the explicit pair uses
-# err^-(1/8 - 0.75 BETA) * err_old^BETA, which damps the accept/reject oscillation.
+# err^-(1/q - 0.75 BETA) * err_old^BETA (q = 5 or 8), which damps the accept/reject oscillation.
 PI_BETA = 0.04
 LOG_EN_FLOOR = math.log(1e-4)  # err_old is taken as at least 1e-4
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def use_dop853(rtol):
+    """True when the explicit pair for ``rtol`` is DOP853 (else Dormand-Prince 5(4))."""
+    return rtol <= DOP853_RTOL
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -82,124 +95,6 @@ def _initial_step(y, f, P, rtol, atol, order, work, fwork):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _hermite(y0, f0, y1, f1, h, th, i):
-    """Cubic Hermite interpolant of component i: the dense output used with Rodas4."""
-    h00 = (1 + 2 * th) * (1 - th) ** 2
-    h10 = th * (1 - th) ** 2
-    h01 = th * th * (3 - 2 * th)
-    h11 = th * th * (th - 1)
-    return h00 * y0[i] + h10 * h * f0[i] + h01 * y1[i] + h11 * h * f1[i]
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def _hermite_slope(y0, f0, y1, f1, h, th, i):
-    """d/dtheta of ``_hermite`` (component i)."""
-    return ((6 * th * th - 6 * th) * (y0[i] - y1[i]) + (3 * th * th - 4 * th + 1) * h * f0[i]
-            + (3 * th * th - 2 * th) * h * f1[i])
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def _radial_rate(y0, f0, y1, f1, h, th):
-    """(r dr/dtheta, r) on the cubic Hermite interpolant of x and y over the step."""
-    x = _hermite(y0, f0, y1, f1, h, th, X)
-    yy = _hermite(y0, f0, y1, f1, h, th, Y)
-    return (x * _hermite_slope(y0, f0, y1, f1, h, th, X)
-            + yy * _hermite_slope(y0, f0, y1, f1, h, th, Y)), math.sqrt(x * x + yy * yy)
-
-
-@njit(cache=True, error_model="numpy")
-def _r_inside(y0, f0, y1, f1, h):
-    """r at an extremum of r inside the step (r dr/ds changes sign), or -1 if none.
-
-    The accepted steps alone would miss a turning point of r by up to the step's length:
-    r_min and r_max are refined on the cubic Hermite interpolant of x and y (error O(h^4))
-    by the Illinois method on r dr/dtheta."""
-    glo = y0[X] * f0[X] + y0[Y] * f0[Y]
-    ghi = y1[X] * f1[X] + y1[Y] * f1[Y]
-    if not (glo * ghi < 0.0):
-        return -1.0
-    lo, hi = 0.0, 1.0
-    r = -1.0
-    side = 0
-    for _ in range(60):
-        th = (lo * ghi - hi * glo) / (ghi - glo)
-        if not (lo < th < hi):
-            th = 0.5 * (lo + hi)
-        g, r = _radial_rate(y0, f0, y1, f1, h, th)
-        if g == 0.0 or hi - lo <= 1e-12:
-            break
-        if (g < 0.0) == (glo < 0.0):
-            lo, glo = th, g
-            if side == -1:
-                ghi *= 0.5
-            side = -1
-        else:
-            hi, ghi = th, g
-            if side == 1:
-                glo *= 0.5
-            side = 1
-    return r
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def _gap_at(th, h, y, f, ynew, fnew, P):
-    x = _hermite(y, f, ynew, fnew, h, th, X)
-    tau = _hermite(y, f, ynew, fnew, h, th, TAU)
-    return exit_gap(tau, x, P)
-
-
-@njit(cache=True, error_model="numpy")
-def _locate_exit(h, y, f, ynew, fnew, P):
-    """First theta in (0, 1] where the exit gap crosses zero after a Rodas4 step, or -1.
-
-    (``dop853.locate_exit`` does the same on the explicit pair's dense output.)
-
-    Scans the step when s(tau) ends above L0 or may have a maximum inside
-    (v_x crosses 1), then refines the first bracket by the Illinois method.
-    """
-    g1 = exit_gap(ynew[TAU], ynew[X], P)
-    may_peak = (y[VX] < 1.0) and (ynew[VX] > 1.0)
-    if g1 < 0.0 and not may_peak:
-        return -1.0
-    lo = 0.0
-    glo = exit_gap(y[TAU], y[X], P)
-    hi = -1.0
-    ghi = 0.0
-    for k in range(1, SCAN_POINTS + 1):
-        th = k / SCAN_POINTS
-        g = g1 if k == SCAN_POINTS else _gap_at(th, h, y, f, ynew, fnew, P)
-        if g >= 0.0:
-            hi = th
-            ghi = g
-            break
-        lo = th
-        glo = g
-    if hi < 0.0:
-        return -1.0
-    side = 0
-    for _ in range(200):
-        if hi - lo <= 4e-16 * hi:
-            break
-        th = (lo * ghi - hi * glo) / (ghi - glo)
-        if not (lo < th < hi):
-            th = 0.5 * (lo + hi)
-        g = _gap_at(th, h, y, f, ynew, fnew, P)
-        if g >= 0.0:
-            hi, ghi = th, g
-            if side == 1:
-                glo *= 0.5
-            side = 1
-        else:
-            lo, glo = th, g
-            if side == -1:
-                ghi *= 0.5
-            side = -1
-        if g == 0.0:
-            break
-    return hi
-
-
-@njit(cache=True, error_model="numpy", inline="always")
 def _jac_norm(J):
     big = 0.0
     for i in range(N_MOTION):
@@ -211,15 +106,16 @@ def _jac_norm(J):
 
 
 @njit(cache=True, error_model="numpy")
-def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
-    """Integrate from y0 until the exit event, a budget, or a failure.
+def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record, high):
+    """Integrate from y0 until the exit event, a budget, or a failure; the explicit
+    steps by DOP853 when ``high`` (``use_dop853(rtol)``), else by Dormand-Prince 5(4).
 
     Returns (status, t, y, stats, r_min, r_max, nodes, n_nodes); status codes are those
     named in ``slots`` (``model.results.Status``); r_min and r_max are the extremes of the
     distance r from the pivot over the contact (at the accepted steps and the turning
-    points of r inside them, ``_r_inside``). ``nodes`` rows are (tau, the ``REC_SLOTS`` of the
+    points of r inside them, ``event.r_inside``). ``nodes`` rows are (tau, the ``REC_SLOTS`` of the
     state, and their tau-derivatives) when ``record`` is set: at the accepted steps and
-    inside the explicit ones (``record.record_inside``), every one or every 2^k-th once
+    inside the DOP853 ones (``record.record_inside``), every one or every 2^k-th once
     there are more than ``MAX_NODES``, and the last state.
     """
     n = N_STATE
@@ -244,7 +140,8 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
     rhs(y, P, f)
     implicit = method == 2
     dense_done = False
-    h = _initial_step(y, f, P, rtol, atol, 4 if implicit else 8, ystage, fnew)
+    h = _initial_step(y, f, P, rtol, atol, 4 if implicit else (8 if high else 5), ystage,
+                      fnew)
     stats[ST_RHS] += 2
     nodes = np.empty((256 if record else 1, N_NODE_COLS))
     n_nodes = 0
@@ -290,12 +187,18 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
             en = _err_norm(err, y, ynew, rtol, atol) if ok else np.inf
             expo = 1.0 / rodas4.ORDER
             maxfac = 6.0
-        else:
+        elif high:
             dop853.step(y, f, h, P, K, ynew, ystage)
             dense_done = False
             stats[ST_RHS] += 12
             en = dop853.error_norm(h, K, y, ynew, rtol, atol)
             expo = 1.0 / dop853.ORDER
+            maxfac = 10.0
+        else:
+            dopri5.step(y, f, h, P, K, ynew, err, ystage)
+            stats[ST_RHS] += 6
+            en = _err_norm(err, y, ynew, rtol, atol)
+            expo = 1.0 / dopri5.ORDER
             maxfac = 10.0
         if en > 1.0 and not finishing:
             stats[ST_REJ] += 1
@@ -308,17 +211,22 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
             rhs(ynew, P, fnew)
             stats[ST_RHS] += 1
         else:
+            last = dop853.N_STAGES if high else 6  # f(ynew), the last stage (FSAL)
             for i in range(n):
-                fnew[i] = K[dop853.N_STAGES, i]
+                fnew[i] = K[last, i]
         if finishing:
             status = OK
         else:
-            if implicit:
-                th = _locate_exit(h, y, f, ynew, fnew, P)
-            else:
-                th, extra = dop853.locate_exit(h, y, ynew, K, P, ydense, SCAN_POINTS, FX, FT)
-                stats[ST_RHS] += extra
-                dense_done = extra > 0
+            th = -1.0
+            if event.may_exit(y, ynew, P):
+                kind = event.HERMITE if implicit else (event.DP8 if high else event.DP5)
+                if kind == event.DP8:
+                    dop853.dense_stages(y, h, P, K, ydense)
+                    stats[ST_RHS] += 3
+                    dense_done = True
+                    dop853.poly(y, ynew, K, h, X, FX)
+                    dop853.poly(y, ynew, K, h, TAU, FT)
+                th = event.locate_exit(kind, h, y, f, ynew, fnew, K, FX, FT, P, SCAN_POINTS)
             if th > 0.0:
                 # Retake this step exactly to the located exit time.
                 h = th * h
@@ -326,7 +234,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
                 continue
         stats[ST_ACC] += 1
         stats[ST_ACC_IMPL if implicit else ST_ACC_EXPL] += 1
-        if record and not implicit:  # nodes inside the step, on its continuous extension
+        if record and high and not implicit:  # nodes inside the step, on its continuous extension
             if not dense_done:
                 dop853.dense_stages(y, h, P, K, ydense)
                 stats[ST_RHS] += 3
@@ -346,7 +254,8 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
                 if easy >= NONSTIFF_COUNT:
                     implicit = False
                     switched = True
-            elif dop853.stiffness_ratio(h, K, ynew, ystage) > STIFF_HLAMBDA:
+            elif (dop853.stiffness_ratio(h, K, ynew, ystage) > STIFF_HLAMBDA_DP8 if high
+                  else dopri5.stiffness_ratio(h, K, ynew, ystage) > STIFF_HLAMBDA_DP5):
                 nonstiff = 0
                 stiff += 1
                 if stiff >= STIFF_COUNT:
@@ -361,7 +270,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
             stiff = 0
             nonstiff = 0
             easy = 0
-        r_in = _r_inside(y, f, ynew, fnew, h)
+        r_in = event.r_inside(y, f, ynew, fnew, h)
         if r_in >= 0.0:
             r_min = min(r_min, r_in)
             r_max = max(r_max, r_in)
