@@ -1,10 +1,12 @@
 """The recorded history of one contact (``record``): nodes for cubic Hermite sampling.
 
 A node is (tau, the ``REC_SLOTS`` of the state, their tau-derivatives). Nodes are taken at
-every accepted step and, inside each step of the explicit pair, at N_SUB - 1 evenly
-spaced points of DOP853's 7th-order continuous extension (its three extra stages are
-computed only for recording runs). The 8th-order steps are long (about half as many as
-the Dormand-Prince 5(4) steps at equal rtol): cubic Hermite sampling between their ends
+every accepted step and, inside each DOP853 step (rtol <= ``driver.DOP853_RTOL``), at
+N_SUB - 1 evenly spaced points of its 7th-order continuous extension (its three extra
+stages are computed only for recording runs); the shorter Dormand-Prince 5(4) steps
+give nodes at their ends only (candidate numbers n * N_SUB). The 8th-order steps are long
+(about half as many as the Dormand-Prince 5(4) steps at equal rtol): cubic Hermite
+sampling between their ends
 alone would lose about two digits of the series (``model.support._series_from_nodes``);
 with the inner nodes the spacing is shorter than the old steps and the sampled series are
 at least as accurate as before (``tests/test_series.py``). The recorded run takes exactly
