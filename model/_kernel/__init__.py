@@ -55,7 +55,7 @@ _purge_stale_cache()
 
 
 #: Seconds a cold compile of the kernel takes on a 2-core machine (for the message).
-COLD_COMPILE_SECONDS = 10
+COLD_COMPILE_SECONDS = 20
 
 
 def cache_is_cold() -> bool:
@@ -83,7 +83,7 @@ def announce_cold_start(stream) -> bool:
 def warmup() -> float:
     """Compile (or load from numba's on-disk cache) every kernel path; returns seconds.
 
-    A cold compile takes ~8 s on a 2-core machine, loading the cache < 1 s; servers
+    A cold compile takes ~18 s on a 2-core machine, loading the cache < 1 s; servers
     and images call this once at build or start so no visitor waits.
     """
     import time
