@@ -38,6 +38,11 @@ RTOLS = [10.0 ** (-k / 4) for k in range(14, 39)]  # 3.2e-4 ... 1e-9.5
 S = _kernel.slots
 
 
+def high(rtol) -> bool:
+    """True when the kernel's explicit pair at ``rtol`` is DOP853."""
+    return rtol <= getattr(_kernel, "DOP853_RTOL", 0.0)
+
+
 def load() -> str:
     return Path("/proc/loadavg").read_text().split(" ", 3)[:3].__str__()
 
@@ -85,9 +90,12 @@ def sweep(params, ref, repeats) -> list:
 
 
 def at_error(rows, target, key):
+    """``key`` at the target error: log-log interpolated between the sweep points around its
+    first crossing, or the first point below it when the explicit pair changes between the
+    two (``_kernel.DOP853_RTOL``: no interpolation across the switch)."""
     for i, r in enumerate(rows):
         if r["ok"] and r["error"] <= target:
-            if i == 0:
+            if i == 0 or high(rows[i - 1]["rtol"]) != high(r["rtol"]):
                 return r[key]
             p = rows[i - 1]
             f = math.log(p["error"] / target) / math.log(p["error"] / r["error"])

@@ -159,17 +159,29 @@ def rhs_cost(params: Params, n=200_000) -> dict:
     return {k: (v / n if k != "n" else v) for k, v in t.items()}
 
 
+def _switches(rtol_a: float, rtol_b: float) -> bool:
+    """True when the kernel's explicit pair differs between the two rtols."""
+    cut = getattr(_kernel, "DOP853_RTOL", 0.0)
+    return (rtol_a <= cut) != (rtol_b <= cut)
+
+
 def at_error(rows: list, target: float, key="seconds"):
     """(value of `key` at error `target`, note), log-log interpolated along the sweep.
 
     The first crossing of the target from the loosest rtol on is used. The note is
     "<=" when the loosest run already meets the target, "not reached" when no run does.
+    Between two rtols on either side of the kernel's switch of explicit pair
+    (``_kernel.DOP853_RTOL``) nothing is interpolated: the first run meeting the target
+    is taken.
     """
-    pts = [(max(r["error"], 1e-300), r[key]) for r in rows if r["success"]]
+    ok = [r for r in rows if r["success"]]
+    pts = [(max(r["error"], 1e-300), r[key]) for r in ok]
     for i, (e, v) in enumerate(pts):
         if e <= target:
             if i == 0:
                 return v, "<="
+            if ok[i]["method"] in ("auto", "explicit") and _switches(ok[i - 1]["rtol"], ok[i]["rtol"]):
+                return v, ""
             e0, v0 = pts[i - 1]
             f = math.log(e0 / target) / math.log(e0 / e)
             return math.exp(math.log(v0) + f * math.log(v / v0)), ""

@@ -30,7 +30,7 @@ def simulate_support(params: Params, rtol: float = 1e-6, atol: float | None = No
     ----------
     params : the support and load (``Params``).
     rtol, atol : local error tolerances (``atol=None`` means rtol/100).
-    method : ``"auto"`` (default: explicit Dormand-Prince 5(4), switching to the
+    method : ``"auto"`` (default: explicit Dormand-Prince 8(5,3), DOP853, switching to the
         L-stable Rosenbrock Rodas4 where stiffness is detected), ``"explicit"``,
         ``"implicit"`` or ``"reference"`` (scipy DOP853, slow).
     samples : number of uniformly spaced points of the time histories to return

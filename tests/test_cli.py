@@ -198,10 +198,11 @@ def test_time_budget_flag(capsys):
 def test_long_contact_with_samples_keeps_a_bounded_record(capsys):
     """``support --max-steps 1e7 --samples 10`` kept every accepted step (2.8 GB before a
     MemoryError at 1e7 steps) to return 10 samples. The kernel now keeps at most
-    MAX_NODES nodes, evenly thinned over the contact: this contact of over 100 000 steps
-    (two thinnings) returns samples that end at its exit state and agree with an
-    unthinned run at a looser tolerance."""
+    MAX_NODES nodes, evenly thinned over the contact: this contact of over 100 000 nodes
+    (N_SUB per explicit step; at least two thinnings) returns samples that end at its exit
+    state and agree with an unthinned run at a looser tolerance."""
     from model import _kernel
+    from model._kernel.record import N_SUB
     from model.contacts import run_contacts
     from model.options import SolverOptions
 
@@ -209,7 +210,9 @@ def test_long_contact_with_samples_keeps_a_bounded_record(capsys):
     code, out, err = run(capsys, "support", *argv, "--rtol", "1e-14", "--max-steps", "1e7",
                          "--samples", "10", "--json")
     record = _strict_json(out)
-    assert code == 0 and err == "" and record["stats"]["n_steps"] > 2 * _kernel.MAX_NODES
+    st = record["stats"]
+    candidates = N_SUB * st["n_steps_explicit"] + st["n_steps_implicit"] + 1
+    assert code == 0 and err == "" and candidates > 2 * _kernel.MAX_NODES
     params = Params(k_r=0.01, k_theta=0.01, F_N=10.0)
     _, nodes = run_contacts(params, params.theta0, SolverOptions(rtol=1e-14, max_steps=10**7),
                             record=True)
@@ -219,7 +222,8 @@ def test_long_contact_with_samples_keeps_a_bounded_record(capsys):
     assert series["tau"][-1] == record["t_out"]
     assert series["x"][-1] == pytest.approx(record["state_out"][0], abs=1e-9)
     loose = simulate_support(params, rtol=1e-10, samples=10)
-    assert loose.stats["n_steps"] < _kernel.MAX_NODES  # every step kept
+    st = loose.stats
+    assert N_SUB * st["n_steps_explicit"] + st["n_steps_implicit"] < _kernel.MAX_NODES  # all kept
     for name in ("x", "y", "v_x", "v_y", "theta"):
         np.testing.assert_allclose(series[name], getattr(loose.series, name), rtol=1e-5,
                                    atol=1e-5, err_msg=name)

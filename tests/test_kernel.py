@@ -13,6 +13,7 @@ from model.reference import reference_rhs
 
 dopri5 = importlib.import_module("model._kernel.dopri5")
 rodas4 = importlib.import_module("model._kernel.rodas4")
+dop853 = importlib.import_module("model._kernel.dop853")
 
 
 def test_dopri5_coefficients_match_scipy():
@@ -95,6 +96,12 @@ def _dp5(y, f, h, P):
     return ynew
 
 
+def _dop853(y, f, h, P):
+    K, ynew, ys = np.zeros((dop853.N_ROWS, y.size)), np.empty(y.size), np.empty(y.size)
+    dop853.step(y, f, h, P, K, ynew, ys)
+    return ynew
+
+
 def _rodas(y, f, h, P):
     n = y.size
     J = np.zeros((n, _kernel.N_MOTION))
@@ -106,6 +113,7 @@ def _rodas(y, f, h, P):
 
 
 @pytest.mark.parametrize("step_fn, order, steps", [(_dp5, 5, (20, 40, 80, 160)),
+                                                   (_dop853, 8, (8, 12, 18)),  # 40 steps: rounding
                                                    (_rodas, 4, (40, 80, 160, 320))])
 def test_empirical_convergence_order(step_fn, order, steps):
     # Smooth on [0, 2]: |v_R| stays away from the steep part of mu near 0.

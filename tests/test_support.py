@@ -73,7 +73,8 @@ def _check_against_reference(params, reference, tolerance=1e-6):
     assert errors[1] < errors[0] / 30  # the error shrinks as rtol shrinks
     np.testing.assert_allclose(res.F_mean, ref.F_mean, atol=1e-7)
     assert res.r_min == pytest.approx(ref.r_min, rel=0.5) or max(res.r_min, ref.r_min) < 1e-6
-    # r_max is sampled at accepted steps on both sides: equal to the step's resolution.
+    # r_max: ours is refined at the turning points of r inside the steps, the reference's is
+    # sampled at its steps (5e-4 low on the stiff regime).
     assert res.r_max == pytest.approx(ref.r_max, rel=1e-3)
     assert res.r_min <= min(1.0, float(np.hypot(*res.state_out[:2]))) <= res.r_max
 
@@ -216,11 +217,14 @@ def test_params_must_be_params():
 
 
 def test_inaccurate_result_is_flagged():
-    params = HARD["compliant F_N=10"]
-    junk = simulate_support(params, rtol=1e-3, method="explicit")  # held at its stability limit
+    # Driven through its pivot at rtol 1e-2, Rodas4 alone misses the energy balance by 2.5 W
+    # (tau_out 210 instead of 144). The 8th-order explicit pair kept the balance within 3 rtol
+    # on every hard case tried at rtol 1e-2 ... 3e-4, so the flag is shown on Rodas4.
+    params = HARD["slider theta0=pi"]
+    junk = simulate_support(params, rtol=1e-2, method="implicit")
     assert junk.success and not junk.accurate and "inaccurate" in junk.message
     assert abs(junk.t_out - simulate_support(params).t_out) > 10  # it really is wrong
-    good = simulate_support(params, rtol=1e-3)
+    good = simulate_support(HARD["compliant F_N=10"], rtol=1e-3)
     assert good.accurate and "warning" not in good.message
 
 

@@ -11,16 +11,17 @@ import numpy as np
 from ..friction import series_coefficients
 from .batch import DERIVED, integrate_batch
 from . import slots
-from .driver import MAX_NODES, N_NODE_COLS, N_REC, REC_SLOTS, integrate
+from .driver import DOP853_RTOL, integrate
+from .record import MAX_NODES, N_NODE_COLS, N_REC, REC_SLOTS
 from .rhs import FN, N_PARAM, REG, TH0, X0, jacobian, mu_over_s, rhs
 from .slots import N_MOTION, N_STATE, N_STATS, STAT_NAMES, TAU, THETA, X, Y
 
 __all__ = ["pack", "initial_state", "integrate", "integrate_batch", "warmup", "cache_is_cold",
            "announce_cold_start", "rhs", "jacobian", "mu_over_s",
-           "slots", "STAT_NAMES", "N_STATE", "N_MOTION", "N_STATS", "N_REC", "REC_SLOTS", "N_NODE_COLS", "MAX_NODES", "METHOD_CODES", "TH0", "X0", "FN", "TAU", "REG", "DERIVED"]
+           "slots", "STAT_NAMES", "N_STATE", "N_MOTION", "N_STATS", "N_REC", "REC_SLOTS", "N_NODE_COLS", "MAX_NODES", "METHOD_CODES", "DOP853_RTOL", "TH0", "X0", "FN", "TAU", "REG", "DERIVED"]
 
 METHOD_CODES = {"auto": 0, "explicit": 1, "implicit": 2}
-_MODULES = ("slots", "rhs", "dopri5", "rodas4", "driver", "batch")
+_MODULES = ("slots", "rhs", "dopri5", "dop853", "rodas4", "event", "record", "driver", "batch")
 
 
 def _purge_stale_cache() -> None:
@@ -54,7 +55,7 @@ _purge_stale_cache()
 
 
 #: Seconds a cold compile of the kernel takes on a 2-core machine (for the message).
-COLD_COMPILE_SECONDS = 10
+COLD_COMPILE_SECONDS = 20
 
 
 def cache_is_cold() -> bool:
@@ -82,7 +83,7 @@ def announce_cold_start(stream) -> bool:
 def warmup() -> float:
     """Compile (or load from numba's on-disk cache) every kernel path; returns seconds.
 
-    A cold compile takes ~8 s on a 2-core machine, loading the cache < 1 s; servers
+    A cold compile takes ~18 s on a 2-core machine, loading the cache < 1 s; servers
     and images call this once at build or start so no visitor waits.
     """
     import time

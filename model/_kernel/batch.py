@@ -4,7 +4,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .driver import N_NODE_COLS, integrate
+from .driver import integrate, use_dop853
+from .record import N_NODE_COLS
 from .rhs import FN, K_R, K_TH, LAM, TH0
 from .slots import D_X, D_Y, I_Y, N_STATE, N_STATS, S_R, S_TH, THETA, VX, VY, W, X, Y
 
@@ -55,9 +56,10 @@ def integrate_batch(Y0, Ps, rtol, atol, method, max_steps, tau_max, record):
     r_max = np.empty(m)
     nodes = np.empty((1, N_NODE_COLS))
     n_nodes = 0
+    high = use_dop853(rtol)
     for i in range(m):
         st, ti, yi, si, ri, rx, nodes, n_nodes = integrate(Y0[i], Ps[i], rtol, atol, method,
-                                                       max_steps, tau_max, record)
+                                                       max_steps, tau_max, record, high)
         status[i] = st
         t[i] = ti
         for j in range(N_STATE):

@@ -1,29 +1,37 @@
 """Adaptive integration of one contact until the exit event of Eq. (9).
 
-Methods: 1 = explicit Dormand-Prince 5(4), 2 = implicit Rodas4, 0 = automatic:
-start explicit, switch to Rodas4 when the stiffness detector of Hairer & Wanner
-(IV.2) fires repeatedly, and back when h ||J|| shows the explicit pair would be
-stable at the current step.
+Methods: 1 = explicit, 2 = implicit Rodas4, 0 = automatic: start explicit, switch to
+Rodas4 when the stiffness detector of Hairer & Wanner (IV.2) fires repeatedly, and back
+when h ||J|| shows the explicit pair would be stable at the current step.
 
-The exit is located on the dense output of the accepted step (first crossing of
-s(tau) = L0, scanning the step when s may cross and re-cross), then the step is
-retaken exactly to the located time, so the exit state has the method's full
-accuracy rather than the interpolant's.
+The explicit pair follows the requested rtol (``use_dop853``): DOP853 (Dormand-Prince
+8(5,3)) at rtol <= DOP853_RTOL, Dormand-Prince 5(4) above it, each where it costs least
+at equal exit-state error (docs/model.md, "Solvers").
+
+The exit is located on the dense output of the accepted step (``event.locate_exit``:
+first crossing of s(tau) = L0, scanning the step when s may cross and re-cross), then
+the step is retaken exactly to the located time, so the exit state has the method's
+full accuracy rather than the interpolant's.
 """
 import math
 
 import numpy as np
 from numba import njit
 
-from . import dopri5, rodas4
-from .rhs import copy_into, exit_gap, jacobian, rhs
+from . import dop853, dopri5, event, rodas4
+from .record import N_NODE_COLS, N_SUB, record as _record, record_inside
+from .rhs import copy_into, jacobian, rhs
 from .slots import (ERROR_SLOTS, N_ERROR, N_MOTION, N_STATE, N_STATS, NONFINITE, OK, ST_ACC,
                     ST_ACC_EXPL, ST_ACC_IMPL, ST_JAC, ST_LU, ST_REJ, ST_RHS, ST_SWITCH,
-                    STEP_BUDGET, STEP_UNDERFLOW, TAU, THETA, TIME_BUDGET, VX, VY, W, D_X, D_Y,
-                    X, Y)
+                    STEP_BUDGET, STEP_UNDERFLOW, TAU, TIME_BUDGET, X, Y)
 
+#: The explicit pair is DOP853 at a requested rtol <= DOP853_RTOL and Dormand-Prince 5(4)
+#: above it (measured crossover: docs/model.md, "Solvers").
+DOP853_RTOL = 1e-6
 SAFETY = 0.9
-STIFF_HLAMBDA = 3.25  # DP5 stability boundary on the negative real axis (~3.3)
+# Stability boundaries on the negative real axis (Hairer's DOPRI5 and DOP853 codes).
+STIFF_HLAMBDA_DP5 = 3.25
+STIFF_HLAMBDA_DP8 = 6.1
 STIFF_COUNT = 15
 NONSTIFF_HNORM = 2.0  # back to explicit when h ||J||_inf stays below this
 NONSTIFF_COUNT = 5
@@ -32,9 +40,15 @@ NONSTIFF_COUNT = 5
 PIVOT_EXPLICIT = 1e-3
 SCAN_POINTS = 8
 # PI step-size control (Gustafsson; Hairer & Wanner I, IV.2): the explicit pair uses
-# err^-(1/5 - 0.75 BETA) * err_old^BETA, which damps the accept/reject oscillation.
+# err^-(1/q - 0.75 BETA) * err_old^BETA (q = 5 or 8), which damps the accept/reject oscillation.
 PI_BETA = 0.04
 LOG_EN_FLOOR = math.log(1e-4)  # err_old is taken as at least 1e-4
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def use_dop853(rtol):
+    """True when the explicit pair for ``rtol`` is DOP853 (else Dormand-Prince 5(4))."""
+    return rtol <= DOP853_RTOL
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -81,76 +95,6 @@ def _initial_step(y, f, P, rtol, atol, order, work, fwork):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _hermite(y0, f0, y1, f1, h, th, i):
-    """Cubic Hermite interpolant of component i: the dense output used with Rodas4."""
-    h00 = (1 + 2 * th) * (1 - th) ** 2
-    h10 = th * (1 - th) ** 2
-    h01 = th * th * (3 - 2 * th)
-    h11 = th * th * (th - 1)
-    return h00 * y0[i] + h10 * h * f0[i] + h01 * y1[i] + h11 * h * f1[i]
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def _gap_at(th, h, y, f, ynew, fnew, K, implicit, P):
-    if implicit:
-        x = _hermite(y, f, ynew, fnew, h, th, X)
-        tau = _hermite(y, f, ynew, fnew, h, th, TAU)
-    else:
-        x = dopri5.dense_component(y, K, h, th, X)
-        tau = dopri5.dense_component(y, K, h, th, TAU)
-    return exit_gap(tau, x, P)
-
-
-@njit(cache=True, error_model="numpy")
-def _locate_exit(h, y, f, ynew, fnew, K, implicit, P):
-    """First theta in (0, 1] where the exit gap crosses zero, or -1 if none.
-
-    Scans the step when s(tau) ends above L0 or may have a maximum inside
-    (v_x crosses 1), then refines the first bracket by the Illinois method.
-    """
-    g1 = exit_gap(ynew[TAU], ynew[X], P)
-    may_peak = (y[VX] < 1.0) and (ynew[VX] > 1.0)
-    if g1 < 0.0 and not may_peak:
-        return -1.0
-    lo = 0.0
-    glo = exit_gap(y[TAU], y[X], P)
-    hi = -1.0
-    ghi = 0.0
-    for k in range(1, SCAN_POINTS + 1):
-        th = k / SCAN_POINTS
-        g = g1 if k == SCAN_POINTS else _gap_at(th, h, y, f, ynew, fnew, K, implicit, P)
-        if g >= 0.0:
-            hi = th
-            ghi = g
-            break
-        lo = th
-        glo = g
-    if hi < 0.0:
-        return -1.0
-    side = 0
-    for _ in range(200):
-        if hi - lo <= 4e-16 * hi:
-            break
-        th = (lo * ghi - hi * glo) / (ghi - glo)
-        if not (lo < th < hi):
-            th = 0.5 * (lo + hi)
-        g = _gap_at(th, h, y, f, ynew, fnew, K, implicit, P)
-        if g >= 0.0:
-            hi, ghi = th, g
-            if side == 1:
-                glo *= 0.5
-            side = 1
-        else:
-            lo, glo = th, g
-            if side == -1:
-                ghi *= 0.5
-            side = -1
-        if g == 0.0:
-            break
-    return hi
-
-
-@njit(cache=True, error_model="numpy", inline="always")
 def _jac_norm(J):
     big = 0.0
     for i in range(N_MOTION):
@@ -161,59 +105,18 @@ def _jac_norm(J):
     return big
 
 
-#: State slots recorded at every accepted step (with ``record``): the motion and the
-#: cumulative quadratures of the energy split (Eq. 12), W, D_x, D_y.
-REC_SLOTS = (X, Y, VX, VY, THETA, W, D_X, D_Y)
-N_REC = len(REC_SLOTS)
-N_NODE_COLS = 1 + 2 * N_REC
-
-
-#: Most nodes kept (``record``): a contact of any length stores at most MAX_NODES rows
-#: (4.5 MB). Past it every other node is dropped and only every other step recorded from
-#: then on (the stride doubles), so the nodes stay evenly spread over the whole contact;
-#: contacts of fewer accepted steps keep every step, as before.
-MAX_NODES = 1 << 15
-
-
 @njit(cache=True, error_model="numpy")
-def _record(nodes, count, stride, step, force, y, f):
-    """Append (tau, the REC_SLOTS of y, and their tau-derivatives) to ``nodes`` when
-    accepted step number ``step`` falls on ``stride`` (or ``force``: the last state).
-
-    Returns (nodes, count, stride); node i holds step i * stride."""
-    if step % stride != 0 and not force:
-        return nodes, count, stride
-    if count == nodes.shape[0]:
-        if count >= MAX_NODES:
-            half = (count + 1) // 2
-            for i in range(1, half):
-                copy_into(nodes[i], nodes[2 * i])
-            count = half
-            stride *= 2
-            if step % stride != 0 and not force:
-                return nodes, count, stride
-        else:
-            bigger = np.empty((min(2 * nodes.shape[0], MAX_NODES), nodes.shape[1]))
-            for i in range(count):
-                copy_into(bigger[i], nodes[i])
-            nodes = bigger
-    nodes[count, 0] = y[TAU]
-    for k in range(N_REC):
-        i = REC_SLOTS[k]
-        nodes[count, 1 + k] = y[i]
-        nodes[count, 1 + N_REC + k] = f[i] / f[TAU]  # d/dtau = (d/ds) / w
-    return nodes, count + 1, stride
-
-
-@njit(cache=True, error_model="numpy")
-def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
-    """Integrate from y0 until the exit event, a budget, or a failure.
+def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record, high):
+    """Integrate from y0 until the exit event, a budget, or a failure; the explicit
+    steps by DOP853 when ``high`` (``use_dop853(rtol)``), else by Dormand-Prince 5(4).
 
     Returns (status, t, y, stats, r_min, r_max, nodes, n_nodes); status codes are those
-    named in ``slots`` (``model.results.Status``); r_min and r_max are the extremes of the distance r from
-    the pivot over the accepted steps. ``nodes`` rows are (tau, the ``REC_SLOTS`` of the
-    state, and their tau-derivatives) at the accepted steps when ``record`` is set: every
-    step, or every 2^k-th once there are more than ``MAX_NODES``, and the last one.
+    named in ``slots`` (``model.results.Status``); r_min and r_max are the extremes of the
+    distance r from the pivot over the contact (at the accepted steps and the turning
+    points of r inside them, ``event.r_inside``). ``nodes`` rows are (tau, the ``REC_SLOTS`` of the
+    state, and their tau-derivatives) when ``record`` is set: at the accepted steps and
+    inside the DOP853 ones (``record.record_inside``), every one or every 2^k-th once
+    there are more than ``MAX_NODES``, and the last state.
     """
     n = N_STATE
     stats = np.zeros(N_STATS, np.int64)
@@ -223,15 +126,22 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
     fnew = np.empty(n)
     err = np.empty(n)
     ystage = np.empty(n)
+    ydense = np.empty(n)  # stage arguments of the dense output (ystage stays for the detector)
+    ysub = np.empty(n if record else 1)
+    fsub = np.empty(n if record else 1)
     b = np.empty(n)
-    K = np.zeros((7, n))
+    K = np.zeros((dop853.N_ROWS, n))
+    FX = np.empty(dop853.N_POLY)
+    FT = np.empty(dop853.N_POLY)
     Kr = np.zeros((6, n))
     J = np.zeros((n, N_MOTION))
     M = np.empty((N_MOTION, N_MOTION))
     piv = np.zeros(N_MOTION, np.int64)
     rhs(y, P, f)
     implicit = method == 2
-    h = _initial_step(y, f, P, rtol, atol, 4 if implicit else 5, ystage, fnew)
+    dense_done = False
+    h = _initial_step(y, f, P, rtol, atol, 4 if implicit else (8 if high else 5), ystage,
+                      fnew)
     stats[ST_RHS] += 2
     nodes = np.empty((256 if record else 1, N_NODE_COLS))
     n_nodes = 0
@@ -277,6 +187,13 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
             en = _err_norm(err, y, ynew, rtol, atol) if ok else np.inf
             expo = 1.0 / rodas4.ORDER
             maxfac = 6.0
+        elif high:
+            dop853.step(y, f, h, P, K, ynew, ystage)
+            dense_done = False
+            stats[ST_RHS] += 12
+            en = dop853.error_norm(h, K, y, ynew, rtol, atol)
+            expo = 1.0 / dop853.ORDER
+            maxfac = 10.0
         else:
             dopri5.step(y, f, h, P, K, ynew, err, ystage)
             stats[ST_RHS] += 6
@@ -294,12 +211,22 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
             rhs(ynew, P, fnew)
             stats[ST_RHS] += 1
         else:
+            last = dop853.N_STAGES if high else 6  # f(ynew), the last stage (FSAL)
             for i in range(n):
-                fnew[i] = K[6, i]
+                fnew[i] = K[last, i]
         if finishing:
             status = OK
         else:
-            th = _locate_exit(h, y, f, ynew, fnew, K, implicit, P)
+            th = -1.0
+            if event.may_exit(y, ynew, P):
+                kind = event.HERMITE if implicit else (event.DP8 if high else event.DP5)
+                if kind == event.DP8:
+                    dop853.dense_stages(y, h, P, K, ydense)
+                    stats[ST_RHS] += 3
+                    dense_done = True
+                    dop853.poly(y, ynew, K, h, X, FX)
+                    dop853.poly(y, ynew, K, h, TAU, FT)
+                th = event.locate_exit(kind, h, y, f, ynew, fnew, K, FX, FT, P, SCAN_POINTS)
             if th > 0.0:
                 # Retake this step exactly to the located exit time.
                 h = th * h
@@ -307,6 +234,13 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
                 continue
         stats[ST_ACC] += 1
         stats[ST_ACC_IMPL if implicit else ST_ACC_EXPL] += 1
+        if record and high and not implicit:  # nodes inside the step, on its continuous extension
+            if not dense_done:
+                dop853.dense_stages(y, h, P, K, ydense)
+                stats[ST_RHS] += 3
+            nodes, n_nodes, stride = record_inside(nodes, n_nodes, stride,
+                                                   (stats[ST_ACC] - 1) * N_SUB, y, ynew, K, h,
+                                                   FX, ysub, fsub)
         switched = False
         r_new = math.sqrt(ynew[X] * ynew[X] + ynew[Y] * ynew[Y])
         if method == 0 and status < 0 and r_new < PIVOT_EXPLICIT:
@@ -320,7 +254,8 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
                 if easy >= NONSTIFF_COUNT:
                     implicit = False
                     switched = True
-            elif dopri5.stiffness_ratio(h, K, ynew, ystage) > STIFF_HLAMBDA:
+            elif (dop853.stiffness_ratio(h, K, ynew, ystage) > STIFF_HLAMBDA_DP8 if high
+                  else dopri5.stiffness_ratio(h, K, ynew, ystage) > STIFF_HLAMBDA_DP5):
                 nonstiff = 0
                 stiff += 1
                 if stiff >= STIFF_COUNT:
@@ -335,13 +270,18 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
             stiff = 0
             nonstiff = 0
             easy = 0
+        r_in = event.r_inside(y, f, ynew, fnew, h)
+        if r_in >= 0.0:
+            r_min = min(r_min, r_in)
+            r_max = max(r_max, r_in)
         t += h
         copy_into(y, ynew)
         copy_into(f, fnew)
         r_min = min(r_min, r_new)
         r_max = max(r_max, r_new)
         if record:
-            nodes, n_nodes, stride = _record(nodes, n_nodes, stride, stats[ST_ACC], False, y, f)
+            nodes, n_nodes, stride = _record(nodes, n_nodes, stride, stats[ST_ACC] * N_SUB,
+                                             False, y, f)
         log_en = math.log(max(en, 1e-300))
         if en == 0.0:
             fac = maxfac
@@ -355,6 +295,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record):
             fac = min(1.0, fac)
         last_rejected = False
         h *= fac
-    if record and stats[ST_ACC] % stride != 0:  # the last state, off the stride
-        nodes, n_nodes, stride = _record(nodes, n_nodes, stride, stats[ST_ACC], True, y, f)
+    if record and (stats[ST_ACC] * N_SUB) % stride != 0:  # the last state, off the stride
+        nodes, n_nodes, stride = _record(nodes, n_nodes, stride, stats[ST_ACC] * N_SUB, True,
+                                         y, f)
     return status, y[TAU], y, stats, r_min, r_max, nodes, n_nodes

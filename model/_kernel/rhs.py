@@ -93,8 +93,7 @@ def sundman(r2, P):
     return (r2 + DELTA * DELTA) / den, 2.0 * (R_S * R_S - DELTA * DELTA) / (den * den)
 
 
-@njit(cache=True, error_model="numpy")
-def rhs(u, P, out):
+def _rhs(u, P, out):
     """du/ds for the 12-component state: w(r) times Eqs. (5), (6), the quadratures, 1."""
     x, y, vx, vy, th = u[X], u[Y], u[VX], u[VY], u[THETA]
     dth = th - P[TH0]
@@ -128,6 +127,11 @@ def rhs(u, P, out):
     out[S_TH] = w * dth * dth
     out[S_R] = w * (r - 1.0) * (r - 1.0)
     out[TAU] = w
+
+
+rhs = njit(cache=True, error_model="numpy")(_rhs)
+#: The same, inlined where it is called: the stages of the explicit pair (~15 % of a step).
+rhs_inline = njit(cache=True, error_model="numpy", inline="always")(_rhs)
 
 
 @njit(cache=True, error_model="numpy")
