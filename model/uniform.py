@@ -39,6 +39,8 @@ __all__ = ["UniformArrayResult", "uniform_array", "TOL"]
 
 #: Quadrature tolerance on F_T,x/(mu0 F_N) and N_c/N_c0 a uniform array accepts.
 TOL = Interval(1e-8, 0.5)
+#: The self-consistent beta is accepted when |G(beta)| <= BETA_GTOL * tol.
+BETA_GTOL = 0.1
 
 # Integrand components per orientation; the last three are diagnostics, not averaged.
 QUANTITIES = ("F_x", "F_y", "t_out", "W", "D_x", "D_y", "U_el", "K", "dtheta_rms", "dr_rms")
@@ -131,21 +133,26 @@ def _uniform(params, self_consistent, tol, options, max_intervals, full_circle,
     beta = params.beta
     beta_iter, beta_res = 0, 0.0
     edges = np.linspace(0.0, span, 5)
+    # The slope of G on the quadrature's partition: a neighbour's (continuation), else
+    # the coarse rule's. The coarse G can jump where one of its 15 members does (its
+    # slope is then no guide), while G on the refined partition is smooth.
+    fine_slope = slope if slope is not None and slope > 0 else None
     if self_consistent:
-        # Coarse to fine: beta on one 15-node interval first (a quarter of the work
-        # per evaluation), then continued onto the 4-interval start partition.
+        # Coarse to fine: beta on one 15-node interval first. Its root is only a start:
+        # the one-interval rule moves the root by up to ~1e-2, so xtol = tol suffices.
         for edges in COARSE_PARTITIONS(span):
             sol = solve_beta_secant(lambda b: _mean(edges, integrand(_nodes(edges), b)[:, _T], span),
-                                    params.L0, xtol=tol / 100 if edges.size > 2 else tol / 10,
+                                    params.L0, xtol=tol / 100 if edges.size > 2 else tol,
                                     guess=guess, slope=slope)
             beta_iter += sol.iterations
             beta, guess = sol.beta, sol.beta
             slope = sol.slope if math.isfinite(sol.slope) else slope
+    fine_slope = fine_slope or slope
     edges = np.linspace(0.0, span, 5)
-    # beta is converged when |G| <= gtol on the quadrature's own partition (a slope of
-    # G >= 1 makes that |beta - beta*| <= gtol, a hundredth of the former bracket width
-    # tol/100 whose final secant step usually landed that close).
-    gtol = tol / 1000
+    # beta is converged when |G| <= gtol = tol/10 on the quadrature's own partition. The
+    # slope of G is >= 1 and |dF_T,x/(mu0 F_N)/dbeta| <= 1 (docs/model.md, "Contact count
+    # and the load factor"), so beta's share of the error of the averages is <= tol/10.
+    gtol = tol * BETA_GTOL
     for _ in range(6):
         quad = integrate(lambda x: integrand(x, beta), 0.0, span, targets, control=[_FX, _T],
                          edges=edges, max_intervals=max_intervals)
@@ -157,15 +164,15 @@ def _uniform(params, self_consistent, tol, options, max_intervals, full_circle,
             break
         edges = quad.edges
         # Newton's step from the free residual with the slope of the last solve.
+        s = fine_slope if fine_slope and fine_slope > 0 else 1.0
         sol = solve_beta_secant(lambda b: _mean(edges, integrand(_nodes(edges), b)[:, _T], span),
-                                params.L0, xtol=gtol,
-                                guess=beta - beta_res / (slope if slope and slope > 0 else 1.0),
-                                slope=slope, gtol=gtol)
+                                params.L0, xtol=gtol, guess=beta - beta_res / s,
+                                slope=s, gtol=gtol, known=(beta, beta_res))
         beta_iter += sol.iterations
         beta = sol.beta
-        slope = sol.slope if math.isfinite(sol.slope) else slope
-    if slope is not None and math.isfinite(slope):  # dG/dbeta, to continue a sweep from
-        counter["beta_slope"] = float(slope)
+        fine_slope = sol.slope if math.isfinite(sol.slope) and sol.slope > 0 else fine_slope
+    if fine_slope is not None and math.isfinite(fine_slope):  # to continue a sweep from
+        counter["beta_slope"] = float(fine_slope)
     return _result(params.replace(beta=beta), quad, span, m0, counter,
                    beta_iter, beta_res, options, time.perf_counter() - start)
 
