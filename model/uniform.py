@@ -39,7 +39,7 @@ __all__ = ["UniformArrayResult", "uniform_array", "TOL"]
 
 #: Quadrature tolerance on F_T,x/(mu0 F_N) and N_c/N_c0 a uniform array accepts.
 TOL = Interval(1e-8, 0.5)
-#: The self-consistent beta is accepted when |G(beta)| <= BETA_GTOL * tol.
+#: The self-consistent beta is accepted when |G(beta)| <= BETA_GTOL * tol * beta**2.
 BETA_GTOL = 0.1
 
 # Integrand components per orientation; the last three are diagnostics, not averaged.
@@ -149,10 +149,10 @@ def _uniform(params, self_consistent, tol, options, max_intervals, full_circle,
             slope = sol.slope if math.isfinite(sol.slope) else slope
     fine_slope = fine_slope or slope
     edges = np.linspace(0.0, span, 5)
-    # beta is converged when |G| <= gtol = tol/10 on the quadrature's own partition. The
-    # slope of G is >= 1 and |dF_T,x/(mu0 F_N)/dbeta| <= 1 (docs/model.md, "Contact count
-    # and the load factor"), so beta's share of the error of the averages is <= tol/10.
-    gtol = tol * BETA_GTOL
+    # beta is converged when |G| <= gtol = BETA_GTOL tol beta^2 on the quadrature's own
+    # partition: then beta moves N_c/N_c0 = 1/(beta - G) by at most BETA_GTOL tol and, with
+    # |d(F_T,x/(mu0 F_N))/dbeta| <= 1 and a slope of G >= 1 (docs/model.md, "Contact
+    # count and the load factor"), F_T,x/(mu0 F_N) by less: a tenth of the tolerance.
     for _ in range(6):
         quad = integrate(lambda x: integrand(x, beta), 0.0, span, targets, control=[_FX, _T],
                          edges=edges, max_intervals=max_intervals)
@@ -160,13 +160,14 @@ def _uniform(params, self_consistent, tol, options, max_intervals, full_circle,
             break
         # G(beta) on the refined partition comes free with the quadrature.
         beta_res = beta - params.L0 * span / quad.integral[_T]
+        gtol = BETA_GTOL * tol * beta ** 2
         if abs(beta_res) <= gtol:
             break
         edges = quad.edges
         # Newton's step from the free residual with the slope of the last solve.
         s = fine_slope if fine_slope and fine_slope > 0 else 1.0
         sol = solve_beta_secant(lambda b: _mean(edges, integrand(_nodes(edges), b)[:, _T], span),
-                                params.L0, xtol=gtol, guess=beta - beta_res / s,
+                                params.L0, xtol=gtol / beta, guess=beta - beta_res / s,
                                 slope=s, gtol=gtol, known=(beta, beta_res))
         beta_iter += sol.iterations
         beta = sol.beta
