@@ -153,24 +153,33 @@ def _uniform(params, self_consistent, tol, options, max_intervals, full_circle,
     # partition: then beta moves N_c/N_c0 = 1/(beta - G) by at most BETA_GTOL tol and, with
     # |d(F_T,x/(mu0 F_N))/dbeta| <= 1 and a slope of G >= 1 (docs/model.md, "Contact
     # count and the load factor"), F_T,x/(mu0 F_N) by less: a tenth of the tolerance.
-    for _ in range(6):
-        quad = integrate(lambda x: integrand(x, beta), 0.0, span, targets, control=[_FX, _T],
-                         edges=edges, max_intervals=max_intervals)
-        if not self_consistent:
-            break
+    quad = integrate(lambda x: integrand(x, beta), 0.0, span, targets, control=[_FX, _T],
+                     edges=edges, max_intervals=max_intervals)
+    last = {"beta": beta, "quad": quad}
+
+    def mean_tau(b):
+        """<tau_out> at b from the quadrature refined on from the last partition."""
+        last["beta"], last["quad"] = b, integrate(
+            lambda x: integrand(x, b), 0.0, span, targets, control=[_FX, _T],
+            edges=last["quad"].edges, max_intervals=max_intervals)
+        return last["quad"].integral[_T] / span
+
+    for _ in range(6 if self_consistent else 0):
         # G(beta) on the refined partition comes free with the quadrature.
         beta_res = beta - params.L0 * span / quad.integral[_T]
         gtol = BETA_GTOL * tol * beta ** 2
         if abs(beta_res) <= gtol:
             break
-        edges = quad.edges
-        # Newton's step from the free residual with the slope of the last solve.
+        # Newton's step from the free residual with the slope of the last solve, then
+        # secant steps; each evaluation is the quadrature at that beta, refining on.
         s = fine_slope if fine_slope and fine_slope > 0 else 1.0
-        sol = solve_beta_secant(lambda b: _mean(edges, integrand(_nodes(edges), b)[:, _T], span),
-                                params.L0, xtol=gtol / beta, guess=beta - beta_res / s,
+        sol = solve_beta_secant(mean_tau, params.L0, xtol=gtol / beta, guess=beta - beta_res / s,
                                 slope=s, gtol=gtol, known=(beta, beta_res))
         beta_iter += sol.iterations
         beta = sol.beta
+        if last["beta"] != beta:  # the solver returns its last point: never, but be sure
+            mean_tau(beta)
+        quad = last["quad"]
         fine_slope = sol.slope if math.isfinite(sol.slope) and sol.slope > 0 else fine_slope
     if fine_slope is not None and math.isfinite(fine_slope):  # to continue a sweep from
         counter["beta_slope"] = float(fine_slope)
