@@ -12,10 +12,13 @@ Two averages of the same trajectories (docs/model.md, "Arrays"):
 
 Energy ratios are ratios of ensemble sums. The load factor beta = L0/<tau_out>(beta)
 is solved self-consistently by default (``model.beta``), coarse to fine: first on one
-15-node interval, then the quadrature refines its partition at that beta, then Newton
-(secant) steps on the refined partition start from the residual G(beta) that the
-quadrature yields for free, until |G| <= tol/1000. Every member is integrated once per
-(beta, theta0) and reused (the last beta evaluated is the one the quadrature uses).
+15-node interval, then the quadrature refines its partition at that beta, then a Newton
+step (the slope of G from a neighbouring sweep point) and secant steps start from the
+residual G(beta) that the quadrature yields for free; each step is the quadrature at
+the new beta, refining on from the last partition, until |G| <= tol beta^2/10
+(``BETA_GTOL``: N_c/N_c0 then moves by at most tol/10; docs/model.md, "Contact count
+and the load factor β"). Every member is integrated once per (beta, theta0) and reused
+(the last beta evaluated is the one the quadrature uses).
 """
 from __future__ import annotations
 
@@ -76,7 +79,8 @@ class UniformArrayResult(ArrayResult):
 
 def uniform_array(params: Params, beta="self", tol: float = 1e-3, rtol: float | None = None,
                   atol: float | None = None, method: str = "auto", max_intervals: int = 256,
-                  full_circle: bool = False, *, beta_guess=None) -> UniformArrayResult:
+                  full_circle: bool = False, *, beta_guess=None,
+                  guess_is_close: bool = False) -> UniformArrayResult:
     """Uniform-orientation array for the springs and load of ``params``.
 
     The array covers every theta0, so ``params.theta0`` must be left at its default; its
@@ -91,6 +95,9 @@ def uniform_array(params: Params, beta="self", tol: float = 1e-3, rtol: float | 
     ``beta_guess`` (a number, or (beta, slope of G) from ``UniformArrayResult.stats``
     of a neighbouring array) starts the self-consistent solve near its root
     (continuation across a sweep); the result is the same to within the tolerance.
+    ``guess_is_close`` starts the quadrature at ``beta_guess`` itself, without the
+    one-interval solve (for a guess extrapolated from two neighbours, closer to the root
+    than that solve gets).
     """
     instance("params", params, Params)
     tol = number("tol", tol, TOL, "quadrature tolerance tol")
@@ -104,7 +111,8 @@ def uniform_array(params: Params, beta="self", tol: float = 1e-3, rtol: float | 
         params = params.replace(beta=beta)
     guess, slope = _guess(beta_guess)
     return _uniform(params.replace(theta0=0.0), beta == "self", float(tol), options,
-                    int(max_intervals), bool(full_circle), guess, slope)
+                    int(max_intervals), bool(full_circle), guess, slope,
+                    bool(guess_is_close) and guess is not None)
 
 
 def _guess(beta_guess):
@@ -122,7 +130,7 @@ def _guess(beta_guess):
 
 @lru_cache(maxsize=256)
 def _uniform(params, self_consistent, tol, options, max_intervals, full_circle,
-             guess=None, slope=None):
+             guess=None, slope=None, close=False):
     start = time.perf_counter()
     span = 2 * math.pi if full_circle else math.pi
     counter = {"trajectories": 0, "n_rhs": 0}
@@ -137,7 +145,9 @@ def _uniform(params, self_consistent, tol, options, max_intervals, full_circle,
     # the coarse rule's. The coarse G can jump where one of its 15 members does (its
     # slope is then no guide), while G on the refined partition is smooth.
     fine_slope = slope if slope is not None and slope > 0 else None
-    if self_consistent:
+    if self_consistent and close:
+        beta = guess
+    elif self_consistent:
         # Coarse to fine: beta on one 15-node interval first. Its root is only a start:
         # the one-interval rule moves the root by up to ~1e-2, so xtol = tol suffices.
         for edges in COARSE_PARTITIONS(span):
