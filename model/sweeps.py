@@ -250,7 +250,7 @@ def _uniform_sweep(kind, points, labels, names, fixed, args, plan=None,
     rows = [None] * len(points)
     total, done_before = len(points), 0
     progress = args["progress"]
-    for number, phase in enumerate(plan):
+    for phase_number, phase in enumerate(plan):
         def seed(i):
             """(beta, slope) of the nearest point already computed, and its distance."""
             best = None
@@ -271,7 +271,7 @@ def _uniform_sweep(kind, points, labels, names, fixed, args, plan=None,
             for i, row in zip(chain, chain_rows):
                 rows[i] = row
         done_before += sum(len(c) for c in phase)
-        if coarse is not None and number == 0 and len(plan) > 1:
+        if coarse is not None and phase_number == 0 and len(plan) > 1:
             ids = sorted(i for chain in phase for i in chain)
             coarse(_sweep_result(kind, [rows[i] for i in ids],
                                  {k: [v[i] for i in ids] for k, v in labels.items()},
