@@ -135,7 +135,7 @@ def solve_beta_scalar(mean_tau, L0: float, xtol: float = 1e-8, guess: float | No
 
 def solve_beta_secant(mean_tau, L0: float, xtol: float = 1e-8, guess: float | None = None,
                       slope: float | None = None, max_evals: int = 30,
-                      gtol: float = 0.0) -> ScalarBeta:
+                      gtol: float = 0.0, known=None) -> ScalarBeta:
     """Solve beta = L0 / mean_tau(beta) by a safeguarded secant method from a guess.
 
     G(beta) = beta - L0/mean_tau(beta) is smooth where the contacts are (its slope is
@@ -147,7 +147,9 @@ def solve_beta_secant(mean_tau, L0: float, xtol: float = 1e-8, guess: float | No
     still not converge within ``max_evals``, ``solve_beta_scalar`` (Brent on
     [BETA_MIN, 1]) finishes. The returned beta is always the last evaluated point,
     so the caller's evaluation there can be reused. ``gtol > 0`` also accepts a point
-    with |G| <= gtol (the residual a caller guarantees anyway).
+    with |G| <= gtol (the residual a caller guarantees anyway). ``known`` = (beta, G) is a
+    point where G is already known (the caller's last evaluation): the second step is
+    then the secant through it rather than a second step with ``slope``.
     """
     calls = [0]
 
@@ -171,6 +173,9 @@ def solve_beta_secant(mean_tau, L0: float, xtol: float = 1e-8, guess: float | No
         if abs(g0) <= gtol or g0 == 0:
             return ScalarBeta(b0, g0, 0, calls[0], True, False, slope or math.nan)
         s = slope if slope is not None and math.isfinite(slope) and slope > 0 else 1.0
+        if known is not None and known[0] != b0:
+            through = (g0 - known[1]) / (b0 - known[0])
+            s = through if math.isfinite(through) and through > 0 else s
         b1 = clip(b0 - g0 / s)
     lo = hi = None  # bracket: G(lo) < 0 <= G(hi)
     side = 0
@@ -184,6 +189,8 @@ def solve_beta_secant(mean_tau, L0: float, xtol: float = 1e-8, guess: float | No
             hi, g_hi = b, g
 
     enclose(b0, g0)
+    if known is not None:
+        enclose(*known)
     it = 0
     while calls[0] < max_evals:
         if b1 == b0:

@@ -250,7 +250,7 @@ def _uniform_sweep(kind, points, labels, names, fixed, args, plan=None,
     rows = [None] * len(points)
     total, done_before = len(points), 0
     progress = args["progress"]
-    for number, phase in enumerate(plan):
+    for phase_number, phase in enumerate(plan):
         def seed(i):
             """(beta, slope) of the nearest point already computed, and its distance."""
             best = None
@@ -271,7 +271,7 @@ def _uniform_sweep(kind, points, labels, names, fixed, args, plan=None,
             for i, row in zip(chain, chain_rows):
                 rows[i] = row
         done_before += sum(len(c) for c in phase)
-        if coarse is not None and number == 0 and len(plan) > 1:
+        if coarse is not None and phase_number == 0 and len(plan) > 1:
             ids = sorted(i for chain in phase for i in chain)
             coarse(_sweep_result(kind, [rows[i] for i in ids],
                                  {k: [v[i] for i in ids] for k, v in labels.items()},
@@ -290,34 +290,56 @@ def _sweep_result(kind, rows, labels, names, fixed, settings, args, start) -> Sw
 
 
 def _uniform_chain(chain) -> list:
-    """Rows of a chain of points, each continued from its predecessor's beta.
+    """Rows of a chain of points, each continued from its predecessors' beta.
 
     A task is (params, settings, distance, (beta, slope) or None) with the seed from an
-    earlier phase; the predecessor in the chain (distance 1) is preferred when nearer.
+    earlier phase; the predecessor in the chain (distance 1) is preferred when nearer,
+    and two predecessors extrapolate beta linearly in the log of the swept parameter.
     """
-    rows, previous = [], None
+    rows, done = [], []
     for params, settings, distance, seeded in chain:
-        guess = previous if previous is not None and distance > 1 else seeded
-        row = _uniform_point((params, settings), guess)
+        close = False
+        if len(done) >= 2 and distance > 1:
+            guess, close = _extrapolate(done[-2], done[-1], params)
+        else:
+            guess = (done[-1][1]["beta"], done[-1][1].get("beta_slope", math.nan)) \
+                if done and distance > 1 else seeded
+        row = _uniform_point((params, settings), guess, close)
         rows.append(row)
-        previous = (row["beta"], row.get("beta_slope", math.nan))
+        done.append((params, row))
     return rows
 
 
-def _uniform_point(task, guess=None) -> dict:
+def _extrapolate(first, second, params) -> tuple:
+    """((beta, slope), True) extrapolated from two points along the one parameter that
+    changes (linearly in its log); the second point's own when none does or it jumps."""
+    (p1, r1), (p2, r2) = first, second
+    beta, slope = r2["beta"], r2.get("beta_slope", math.nan)
+    changed = [k for k in ("k_r", "k_theta", "F_N") if getattr(p1, k) != getattr(p2, k)]
+    if len(changed) != 1 or changed != [k for k in ("k_r", "k_theta", "F_N")
+                                        if getattr(params, k) != getattr(p2, k)]:
+        return (beta, slope), False
+    x1, x2, x = (math.log(getattr(p, changed[0])) for p in (p1, p2, params))
+    step = (beta - r1["beta"]) / (x2 - x1) * (x - x2)
+    if not (r1["beta"] < 1.0 and beta < 1.0) or abs(step) > 0.1 * beta:
+        return (beta, slope), False  # capped, or too far to trust a straight line
+    return (min(1.0, beta + step), slope), True
+
+
+def _uniform_point(task, guess=None, close=False) -> dict:
     """One uniform array (Figs. 5, 6, 8) as a row of plain numbers, from the disk cache
     when this point was computed before with the same settings and package version.
     ``guess`` (beta, slope) only starts the self-consistent solve: not part of the key."""
     params, settings = task
     key = make_key("uniform_array", params=params.as_dict(), **settings)
-    row = DiskCache().get_or_compute(key, lambda: _compute_point(params, settings, guess))
+    row = DiskCache().get_or_compute(key, lambda: _compute_point(params, settings, guess, close))
     return {name: value.item() for name, value in row.items()}
 
 
-def _compute_point(params, settings, guess=None) -> dict:
+def _compute_point(params, settings, guess=None, close=False) -> dict:
     if settings["beta"] != "self" or guess is None or not 0 < guess[0] <= 1:
         guess = None
-    r = uniform_array(params, **settings, beta_guess=guess)
+    r = uniform_array(params, **settings, beta_guess=guess, guess_is_close=close)
     inputs = {"k_r": params.k_r, "k_theta": params.k_theta, "F_N": params.F_N,
               "rtol": r.stats["rtol"]}
     return {name: np.asarray(inputs[name] if name in inputs else value_of(r, name))

@@ -12,10 +12,13 @@ Two averages of the same trajectories (docs/model.md, "Arrays"):
 
 Energy ratios are ratios of ensemble sums. The load factor beta = L0/<tau_out>(beta)
 is solved self-consistently by default (``model.beta``), coarse to fine: first on one
-15-node interval, then the quadrature refines its partition at that beta, then Newton
-(secant) steps on the refined partition start from the residual G(beta) that the
-quadrature yields for free, until |G| <= tol/1000. Every member is integrated once per
-(beta, theta0) and reused (the last beta evaluated is the one the quadrature uses).
+15-node interval, then the quadrature refines its partition at that beta, then a Newton
+step (the slope of G from a neighbouring sweep point) and secant steps start from the
+residual G(beta) that the quadrature yields for free; each step is the quadrature at
+the new beta, refining on from the last partition, until |G| <= tol beta^2/10
+(``BETA_GTOL``: N_c/N_c0 then moves by at most tol/10; docs/model.md, "Contact count
+and the load factor β"). Every member is integrated once per (beta, theta0) and reused
+(the last beta evaluated is the one the quadrature uses).
 """
 from __future__ import annotations
 
@@ -39,6 +42,8 @@ __all__ = ["UniformArrayResult", "uniform_array", "TOL"]
 
 #: Quadrature tolerance on F_T,x/(mu0 F_N) and N_c/N_c0 a uniform array accepts.
 TOL = Interval(1e-8, 0.5)
+#: The self-consistent beta is accepted when |G(beta)| <= BETA_GTOL * tol * beta**2.
+BETA_GTOL = 0.1
 
 # Integrand components per orientation; the last three are diagnostics, not averaged.
 QUANTITIES = ("F_x", "F_y", "t_out", "W", "D_x", "D_y", "U_el", "K", "dtheta_rms", "dr_rms")
@@ -74,7 +79,8 @@ class UniformArrayResult(ArrayResult):
 
 def uniform_array(params: Params, beta="self", tol: float = 1e-3, rtol: float | None = None,
                   atol: float | None = None, method: str = "auto", max_intervals: int = 256,
-                  full_circle: bool = False, *, beta_guess=None) -> UniformArrayResult:
+                  full_circle: bool = False, *, beta_guess=None,
+                  guess_is_close: bool = False) -> UniformArrayResult:
     """Uniform-orientation array for the springs and load of ``params``.
 
     The array covers every theta0, so ``params.theta0`` must be left at its default; its
@@ -89,6 +95,9 @@ def uniform_array(params: Params, beta="self", tol: float = 1e-3, rtol: float | 
     ``beta_guess`` (a number, or (beta, slope of G) from ``UniformArrayResult.stats``
     of a neighbouring array) starts the self-consistent solve near its root
     (continuation across a sweep); the result is the same to within the tolerance.
+    ``guess_is_close`` starts the quadrature at ``beta_guess`` itself, without the
+    one-interval solve (for a guess extrapolated from two neighbours, closer to the root
+    than that solve gets).
     """
     instance("params", params, Params)
     tol = number("tol", tol, TOL, "quadrature tolerance tol")
@@ -102,7 +111,8 @@ def uniform_array(params: Params, beta="self", tol: float = 1e-3, rtol: float | 
         params = params.replace(beta=beta)
     guess, slope = _guess(beta_guess)
     return _uniform(params.replace(theta0=0.0), beta == "self", float(tol), options,
-                    int(max_intervals), bool(full_circle), guess, slope)
+                    int(max_intervals), bool(full_circle), guess, slope,
+                    bool(guess_is_close) and guess is not None)
 
 
 def _guess(beta_guess):
@@ -120,7 +130,7 @@ def _guess(beta_guess):
 
 @lru_cache(maxsize=256)
 def _uniform(params, self_consistent, tol, options, max_intervals, full_circle,
-             guess=None, slope=None):
+             guess=None, slope=None, close=False):
     start = time.perf_counter()
     span = 2 * math.pi if full_circle else math.pi
     counter = {"trajectories": 0, "n_rhs": 0}
@@ -131,41 +141,58 @@ def _uniform(params, self_consistent, tol, options, max_intervals, full_circle,
     beta = params.beta
     beta_iter, beta_res = 0, 0.0
     edges = np.linspace(0.0, span, 5)
-    if self_consistent:
-        # Coarse to fine: beta on one 15-node interval first (a quarter of the work
-        # per evaluation), then continued onto the 4-interval start partition.
+    # The slope of G on the quadrature's partition: a neighbour's (continuation), else
+    # the coarse rule's. The coarse G can jump where one of its 15 members does (its
+    # slope is then no guide), while G on the refined partition is smooth.
+    fine_slope = slope if slope is not None and slope > 0 else None
+    if self_consistent and close:
+        beta = guess
+    elif self_consistent:
+        # Coarse to fine: beta on one 15-node interval first. Its root is only a start:
+        # the one-interval rule moves the root by up to ~1e-2, so xtol = tol suffices.
         for edges in COARSE_PARTITIONS(span):
             sol = solve_beta_secant(lambda b: _mean(edges, integrand(_nodes(edges), b)[:, _T], span),
-                                    params.L0, xtol=tol / 100 if edges.size > 2 else tol / 10,
+                                    params.L0, xtol=tol / 100 if edges.size > 2 else tol,
                                     guess=guess, slope=slope)
             beta_iter += sol.iterations
             beta, guess = sol.beta, sol.beta
             slope = sol.slope if math.isfinite(sol.slope) else slope
+    fine_slope = fine_slope or slope
     edges = np.linspace(0.0, span, 5)
-    # beta is converged when |G| <= gtol on the quadrature's own partition (a slope of
-    # G >= 1 makes that |beta - beta*| <= gtol, a hundredth of the former bracket width
-    # tol/100 whose final secant step usually landed that close).
-    gtol = tol / 1000
-    for _ in range(6):
-        quad = integrate(lambda x: integrand(x, beta), 0.0, span, targets, control=[_FX, _T],
-                         edges=edges, max_intervals=max_intervals)
-        if not self_consistent:
-            break
+    # beta is converged when |G| <= gtol = BETA_GTOL tol beta^2 on the quadrature's own
+    # partition: then beta moves N_c/N_c0 = 1/(beta - G) by at most BETA_GTOL tol and, with
+    # |d(F_T,x/(mu0 F_N))/dbeta| <= 1 and a slope of G >= 1 (docs/model.md, "Contact
+    # count and the load factor"), F_T,x/(mu0 F_N) by less: a tenth of the tolerance.
+    quad = integrate(lambda x: integrand(x, beta), 0.0, span, targets, control=[_FX, _T],
+                     edges=edges, max_intervals=max_intervals)
+    last = {"beta": beta, "quad": quad}
+
+    def mean_tau(b):
+        """<tau_out> at b from the quadrature refined on from the last partition."""
+        last["beta"], last["quad"] = b, integrate(
+            lambda x: integrand(x, b), 0.0, span, targets, control=[_FX, _T],
+            edges=last["quad"].edges, max_intervals=max_intervals)
+        return last["quad"].integral[_T] / span
+
+    for _ in range(6 if self_consistent else 0):
         # G(beta) on the refined partition comes free with the quadrature.
         beta_res = beta - params.L0 * span / quad.integral[_T]
+        gtol = BETA_GTOL * tol * beta ** 2
         if abs(beta_res) <= gtol:
             break
-        edges = quad.edges
-        # Newton's step from the free residual with the slope of the last solve.
-        sol = solve_beta_secant(lambda b: _mean(edges, integrand(_nodes(edges), b)[:, _T], span),
-                                params.L0, xtol=gtol,
-                                guess=beta - beta_res / (slope if slope and slope > 0 else 1.0),
-                                slope=slope, gtol=gtol)
+        # Newton's step from the free residual with the slope of the last solve, then
+        # secant steps; each evaluation is the quadrature at that beta, refining on.
+        s = fine_slope if fine_slope and fine_slope > 0 else 1.0
+        sol = solve_beta_secant(mean_tau, params.L0, xtol=gtol / beta, guess=beta - beta_res / s,
+                                slope=s, gtol=gtol, known=(beta, beta_res))
         beta_iter += sol.iterations
         beta = sol.beta
-        slope = sol.slope if math.isfinite(sol.slope) else slope
-    if slope is not None and math.isfinite(slope):  # dG/dbeta, to continue a sweep from
-        counter["beta_slope"] = float(slope)
+        if last["beta"] != beta:  # the solver returns its last point: never, but be sure
+            mean_tau(beta)
+        quad = last["quad"]
+        fine_slope = sol.slope if math.isfinite(sol.slope) and sol.slope > 0 else fine_slope
+    if fine_slope is not None and math.isfinite(fine_slope):  # to continue a sweep from
+        counter["beta_slope"] = float(fine_slope)
     return _result(params.replace(beta=beta), quad, span, m0, counter,
                    beta_iter, beta_res, options, time.perf_counter() - start)
 

@@ -53,6 +53,19 @@ def test_support_benchmark_quick(tmp_path):
 
 
 @pytest.mark.slow
+def test_map_benchmark_quick(tmp_path):
+    """The regime-map benchmark times a map and its first 8 x 8 picture, with the errors."""
+    _run("bench_map.py", tmp_path)
+    maps = json.loads((tmp_path / "map.json").read_text())["maps"]
+    assert [(m["n"], m["F_N"]) for m in maps] == [(12, 3.0), (8, 3.0)]
+    for m in maps:
+        assert m["succeeded"] == m["points"] == m["n"] ** 2 and m["wall_s"] > 0
+        assert m["max_quadrature_error"] <= 1e-3 and m["max_beta_residual"] <= 1e-4
+    assert 0 < maps[0]["coarse_s"] < maps[0]["wall_s"]  # the 8 x 8 subgrid came first
+    assert "| 3 | 8x8 | 1 |" in (tmp_path / "map.md").read_text()
+
+
+@pytest.mark.slow
 def test_arrays_benchmark_quick(tmp_path):
     _run("bench_arrays.py", tmp_path)
     data = json.loads((tmp_path / "arrays.json").read_text())

@@ -267,3 +267,19 @@ def test_regime_map_hands_out_the_coarse_subgrid_first(tmp_path, monkeypatch):
     for a, b, f in zip(*(seen[0].columns[c] for c in ("k_r", "k_theta", "FTx_over_mu0FN"))):
         assert full[(a, b)] == f  # the same points, not recomputed
     assert np.all(r.columns["success"])
+
+
+def test_chain_extrapolates_beta_along_the_swept_parameter():
+    """Two computed points extrapolate beta linearly in the log of the one parameter that
+    changes; a capped beta or a large step falls back to the nearer point's own."""
+    from model.sweeps import _extrapolate
+
+    p = [Params(0.1, k, F_N=3.0) for k in (0.1, 0.2, 0.4)]
+    row = lambda beta: {"beta": beta, "beta_slope": 1.5}  # noqa: E731
+    (beta, slope), close = _extrapolate((p[0], row(0.50)), (p[1], row(0.52)), p[2])
+    assert close and beta == pytest.approx(0.54) and slope == 1.5
+    assert _extrapolate((p[0], row(0.50)), (p[1], row(1.0)), p[2]) == ((1.0, 1.5), False)
+    assert _extrapolate((p[0], row(0.30)), (p[1], row(0.52)), p[2]) == ((0.52, 1.5), False)
+    # Two parameters changing at once: no straight line to follow.
+    other = Params(0.2, 0.4, F_N=3.0)
+    assert _extrapolate((p[0], row(0.50)), (p[1], row(0.52)), other)[1] is False
