@@ -148,3 +148,50 @@ def test_no_hold_without_a_served_session():
     doc = Document()
     assert not hold_until_next_tick(doc) and not hold_until_next_tick(None)
     assert doc.callbacks.hold_value is None
+
+
+def test_a_change_of_the_controls_reaches_the_page_as_one_message():
+    """The dashboard holds its page's reactions to a control (busy markers, readouts, the
+    address bar, download names) until the next tick: one PATCH-DOC, not one per change."""
+    import panel as pn
+    from panel.io.state import set_curdoc
+    from tornado.ioloop import IOLoop
+
+    from app.views import Dashboard
+
+    async def main():
+        doc, session, connection, context, _models = served_document(IOLoop.current())
+        context._request = type("Request", (), {"arguments": {}, "remote_ip": "127.0.0.1",
+                                                "cookies": {}, "headers": {}})()
+        built = []
+
+        def build():
+            with set_curdoc(doc):
+                built.append(Dashboard())
+                doc.add_root(pn.panel(built[0]).get_root(doc))
+        await session.with_document_locked(build)
+        page = built[0]
+        pn.state._connected[doc] = True  # the browser's websocket is open (Panel's record)
+        await asyncio.sleep(0.2)  # what the build sent
+        connection._socket.messages.clear()
+        seen = {}
+
+        def move():
+            with set_curdoc(doc):
+                page.state.theta0 = 40.0
+            seen["held"] = doc.callbacks.hold_value
+            seen["sent"] = len(connection._socket.messages)
+        await session.with_document_locked(move)
+        for _ in range(50):  # the next turn of the loop
+            await asyncio.sleep(0.01)
+            if connection._socket.messages:
+                break
+        await asyncio.sleep(0.05)
+        return seen, connection._socket.messages
+    seen, messages = asyncio.run(main())
+    assert seen["held"] == "combine" and seen["sent"] == 0, seen
+    patches = [m for m in messages if m.header["msgtype"] == "PATCH-DOC"]
+    # the slider's position and the trajectory download's name (theta0 is in it): without
+    # the hold, each left as its own message
+    assert len(patches) == 1, ([changed(m) for m in patches], seen)
+    assert changed(patches[0]) == [("ModelChanged", "filename"), ("ModelChanged", "value")]
