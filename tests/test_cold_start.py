@@ -20,6 +20,7 @@ def cold(monkeypatch):
         assert release.wait(10)
 
     monkeypatch.setattr("model._kernel.cache_is_cold", lambda: True)
+    monkeypatch.setattr(jobs, "compile_in_a_process", lambda: True)
     monkeypatch.setattr(worker, "warm", slow_warm)
     monkeypatch.setattr(jobs, "_SOLVER_READY", threading.Event())
     monkeypatch.setattr(jobs, "work_pool", lambda: type("Pool", (), {"warm_up": lambda s: None})())
@@ -39,6 +40,26 @@ def test_a_cold_start_compiles_in_the_background(cold):
             break
         time.sleep(0.05)
     assert jobs.solver_ready()
+
+
+def test_the_cold_compile_runs_in_a_process_of_its_own_then_loads_here(monkeypatch):
+    order, ran, compile_in_a_process = [], [], jobs.compile_in_a_process
+    monkeypatch.setattr("model._kernel.cache_is_cold", lambda: True)
+    monkeypatch.setattr(jobs, "compile_in_a_process", lambda: order.append("compile") or True)
+    monkeypatch.setattr(worker, "warm", lambda: order.append("load"))
+    monkeypatch.setattr(jobs, "_SOLVER_READY", threading.Event())
+    monkeypatch.setattr(jobs, "work_pool", lambda: type("Pool", (), {"warm_up": lambda s: None})())
+    assert jobs.start_warm_up() is True
+    for _ in range(100):
+        if jobs.solver_ready():
+            break
+        time.sleep(0.05)
+    assert jobs.solver_ready() and order == ["compile", "load"]
+    # the process: the package's own warm-up command; a failure is reported, not raised
+    monkeypatch.setattr("subprocess.run", lambda argv, **kw: ran.append(argv) or
+                        type("Done", (), {"returncode": 3, "stderr": "boom"})())
+    assert compile_in_a_process() is False
+    assert ran[0][1:] == ["-m", "model", "warmup"]
 
 
 def test_a_warm_cache_loads_the_solver_before_serving(monkeypatch):
