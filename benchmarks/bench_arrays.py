@@ -127,36 +127,12 @@ def throughput(quick: bool) -> dict:
 
 def map_timings(quick: bool) -> list:
     """Regime maps (Fig. 5) on 2 processes with an empty disk cache: wall time to the
-    coarse 8 x 8 subgrid and to the whole map, and the CPU seconds of all processes."""
-    import resource
-
-    from model.sweeps import regime_map
+    coarse 8 x 8 subgrid and to the whole map, and the CPU seconds of all processes
+    (``bench_map.one_map``)."""
+    from bench_map import one_map
 
     n, loads = (8, (1.0,)) if quick else (24, (0.1, 1.0, 3.0, 10.0))
-    rows = []
-    for F_N in loads:
-        with tempfile.TemporaryDirectory() as empty:
-            old = os.environ.get("MICROPILLAR_CACHE_DIR")
-            os.environ["MICROPILLAR_CACHE_DIR"] = empty
-            coarse = {}
-            cpu0 = sum(resource.getrusage(w).ru_utime + resource.getrusage(w).ru_stime
-                       for w in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
-            start = time.perf_counter()
-            try:
-                r = regime_map(n=n, F_N=F_N, tol=1e-3, workers=2,
-                               coarse=lambda s: coarse.setdefault("s", time.perf_counter() - start))
-            finally:
-                if old is None:
-                    os.environ.pop("MICROPILLAR_CACHE_DIR")
-                else:
-                    os.environ["MICROPILLAR_CACHE_DIR"] = old
-            wall = time.perf_counter() - start
-            cpu = sum(resource.getrusage(w).ru_utime + resource.getrusage(w).ru_stime
-                      for w in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN)) - cpu0
-        rows.append(dict(F_N=F_N, n=n, wall_s=wall, coarse_s=coarse.get("s"), cpu_s=cpu,
-                         succeeded=int(np.sum(r.columns["success"])), points=len(r),
-                         max_quadrature_error=float(np.max(r.columns["quadrature_error_FTx"]))))
-    return rows
+    return [one_map(F_N, n) for F_N in loads]
 
 
 def peak_rss_mb(codes: dict) -> dict:

@@ -29,8 +29,6 @@ from tornado.websocket import websocket_connect  # noqa: E402
 
 UPDATE_TIMEOUT_S = 30.0
 OPEN_TIMEOUT_S = 120.0
-#: Pages loading at the same time (people arrive over some seconds, not all at one instant).
-OPENING_AT_ONCE = 2
 #: The title of the server's busy page (app/main.py) and how long a client waits before
 #: it reloads it.
 BUSY_TITLE, BUSY_RETRY_S = b"(busy)</title>", 1.0
@@ -368,35 +366,3 @@ class Session:
             except (asyncio.TimeoutError, Exception):  # noqa: BLE001
                 self._reader.cancel()
 
-
-async def open_sessions(base: str, app: str, n: int, seed: int) -> list[Session]:
-    sessions = [Session(i, base, app, seed=seed) for i in range(n)]
-    opening = asyncio.Semaphore(OPENING_AT_ONCE)
-
-    async def one(s: Session):
-        async with opening:
-            try:
-                await asyncio.wait_for(s.open(), timeout=OPEN_TIMEOUT_S)
-            except Exception as exc:  # noqa: BLE001
-                s.errors.append(f"open failed: {type(exc).__name__}: {exc}")
-    await asyncio.gather(*(one(s) for s in sessions))
-    return sessions
-
-
-async def drive(base: str, app: str, n: int, duration: float, seed: int,
-                on_open=None, before_close=None,
-                profile: str = "drag") -> tuple[list[Session], float]:
-    """Open ``n`` sessions, move their sliders for ``duration`` s in ``profile`` (a key of
-    ``PROFILES``), close them (``on_open()`` is called once all are open,
-    ``before_close()`` just before closing)."""
-    sessions = await open_sessions(base, app, n, seed)
-    if on_open is not None:
-        on_open()
-    started = time.perf_counter()
-    live = [s for s in sessions if not s.errors]
-    await asyncio.gather(*(s.run(started + duration, profile) for s in live))
-    elapsed = time.perf_counter() - started
-    if before_close is not None:
-        before_close()
-    await asyncio.gather(*(s.close() for s in sessions))
-    return sessions, elapsed

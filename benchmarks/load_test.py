@@ -99,7 +99,8 @@ from app.pages import RELEASE_DELAY_S  # noqa: E402
 from tests.browser.serving import serve_app  # noqa: E402
 from tests.dockerfile_replay import dockerfile, image_env  # noqa: E402
 from load_client import (CLASS_GAP_S, DRAG_PROBABILITY, PROFILES, THINK_S,  # noqa: E402
-                         UPDATE_TIMEOUT_S, drive)
+                         UPDATE_TIMEOUT_S)
+from load_class import drive  # noqa: E402
 from load_profile import ServerProfiler, summarise  # noqa: E402
 from load_report import (TARGET_MEMORY_FACTOR, leak_bound, markdown,  # noqa: E402
                          memory_bound, targets)

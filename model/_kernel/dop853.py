@@ -24,6 +24,7 @@ import numpy as np
 from numba import njit
 from scipy.integrate._ivp import dop853_coefficients as _c
 
+from .dopri5 import stage_stiffness
 from .rhs import rhs, rhs_inline
 from .slots import ERROR_SLOTS, N_ERROR, N_MOTION, N_STATE
 
@@ -144,14 +145,5 @@ def poly_with_slope(y0, F, th):
 
 @njit(cache=True, error_model="numpy", inline="always")
 def stiffness_ratio(h, K, ynew, ystage):
-    """h |lambda| from the last stage and f(y1), both at t0 + h (Hairer & Wanner, IV.2)."""
-    num = 0.0
-    den = 0.0
-    for i in range(N_MOTION):
-        d = K[N_STAGES, i] - K[N_STAGES - 1, i]
-        num += d * d
-        e = ynew[i] - ystage[i]
-        den += e * e
-    if den <= 0.0:
-        return 0.0
-    return h * math.sqrt(num / den)
+    """h |lambda| from the last stage and f(y1) (``dopri5.stage_stiffness``)."""
+    return stage_stiffness(h, K, N_STAGES, ynew, ystage)

@@ -94,15 +94,22 @@ def dense_component(y, K, h, theta, i):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def stiffness_ratio(h, K, ynew, ystage):
-    """h |lambda| estimated from stages 6 and 7, both at t0 + h (Hairer & Wanner, IV.2)."""
+def stage_stiffness(h, K, last, ynew, ystage):
+    """h |lambda| from K[last] = f(ynew) and K[last - 1] = f(ystage), both at t0 + h
+    (Hairer & Wanner, IV.2), over the motion slots; used by both explicit pairs."""
     num = 0.0
     den = 0.0
-    for i in range(5):
-        d = K[6, i] - K[5, i]
+    for i in range(N_MOTION):
+        d = K[last, i] - K[last - 1, i]
         num += d * d
         e = ynew[i] - ystage[i]
         den += e * e
     if den <= 0.0:
         return 0.0
     return h * math.sqrt(num / den)
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def stiffness_ratio(h, K, ynew, ystage):
+    """h |lambda| estimated from stages 6 and 7 (``stage_stiffness``)."""
+    return stage_stiffness(h, K, 6, ynew, ystage)
