@@ -9,6 +9,10 @@
   (clickjacking), and browsers take each file as the type the server declares. A
   ``bokeh-session-id`` in the address that Bokeh would read as empty is dropped (Bokeh
   would answer 500).
+* A page request of a client with no room in the page gate (``app.pages``) gets the busy
+  page before any Bokeh session is made (``answer_busy_before_building``): the session
+  and its Panel page cost ~25 ms of the event loop each, and a burst of twenty held the
+  liveness endpoint half a second.
 """
 from app.jobs import start_warm_up
 from app.urlstate import panel_query
@@ -74,7 +78,35 @@ def _drop_empty_session_id(handler) -> None:
             del args["bokeh-session-id"]
 
 
+def answer_busy_before_building() -> None:
+    """Answer a page request with ``app.opening.BUSY_HTML`` when its client has no room in
+    the page gate (``PageGate.has_room``), before Panel makes a session for it (once per
+    process). Panel's page handler (``panel.io.server.DocHandler``) has no hook before its
+    session is made, so its ``get`` is wrapped; the page script keeps its own check (a
+    Panel busy page) for a server without these hooks."""
+    from panel.io.server import DocHandler
+
+    from app.opening import BUSY_HTML
+    from app.pages import page_gate
+
+    if getattr(DocHandler.get, "_busy_first", False):
+        return
+    build = DocHandler.get
+
+    async def get(self, *args, **kwargs):
+        if not page_gate().has_room(self.request.remote_ip):
+            self.set_header("Cache-Control", "no-store")
+            self.set_header("Content-Type", "text/html; charset=UTF-8")
+            self.write(BUSY_HTML)
+            return None
+        return await build(self, *args, **kwargs)
+
+    get._busy_first = True
+    DocHandler.get = get
+
+
 def on_server_loaded(server_context):
     guard_query_parsing()
     add_security_headers()
+    answer_busy_before_building()
     start_warm_up()

@@ -5,9 +5,11 @@ Exit 0 when both hold, else 1 with the reason on stderr:
 1. Panel's liveness endpoint ``BASE_URL/liveness?endpoint=/app`` answers 200 (the server
    is up and its event loop responds);
 2. a real session of ``/app`` (a Bokeh client, as a browser would open it) receives the
-   dashboard's page: a document titled ``TITLE`` with content. Panel answers the liveness
-   endpoint with 200 even when the app raises (it shows an error page instead), so this
-   second step is what makes a broken app unhealthy.
+   dashboard: a document titled ``TITLE``, which, once the client says it has the page
+   (the browser's ``document_ready``), gets the dashboard's root (CSS class ``dashboard``)
+   within ``--timeout`` (the server sends the dashboard only then, ``app.opening``).
+   Panel answers the liveness endpoint with 200 even when the app raises (it shows an
+   error page instead), so this second step is what makes a broken app unhealthy.
 
 ``BASE_URL`` defaults to ``http://127.0.0.1:5006`` (include a ``--prefix`` if the server
 has one). The Dockerfile's HEALTHCHECK runs this module.
@@ -15,37 +17,117 @@ has one). The Dockerfile's HEALTHCHECK runs this module.
 from __future__ import annotations
 
 import sys
+import time
 import urllib.error
 import urllib.request
 
 TITLE = "Micropillar friction explorer"
 DEFAULT_URL = "http://127.0.0.1:5006"
+#: The CSS class of the dashboard's root (``app.views.page.DASHBOARD_CLASS``; named here
+#: so that this check does not import the page before the liveness step).
+DASHBOARD_CLASS = "dashboard"
 
 
 def check(base_url: str = DEFAULT_URL, timeout: float = 25.0) -> str | None:
     """None when the dashboard is healthy, else why not."""
     base = base_url.rstrip("/")
+    deadline = time.monotonic() + timeout
     try:
         with urllib.request.urlopen(f"{base}/liveness?endpoint=/app", timeout=timeout) as r:
             if r.status != 200:
                 return f"liveness answered {r.status}"
     except (urllib.error.URLError, OSError) as error:
         return f"liveness endpoint unreachable: {error}"
+    try:
+        doc = open_dashboard(base, timeout=max(deadline - time.monotonic(), 1.0))
+    except TimeoutError:
+        return f"/app did not send the dashboard within {timeout:g} s: see the server log"
+    except Exception as error:  # noqa: BLE001 -- any failure to open a session is unhealthy
+        return f"no session of /app: {type(error).__name__}: {error}"
+    if doc.title != TITLE or not has_dashboard(doc):
+        return (f"/app did not build the dashboard (title {doc.title!r}, "
+                f"{len(doc.roots)} roots): see the server log")
+    return None
+
+
+def has_dashboard(doc) -> bool:
+    """Whether ``doc`` holds the dashboard's root (CSS class ``DASHBOARD_CLASS``)."""
+    return any(DASHBOARD_CLASS in (getattr(m, "css_classes", None) or ()) for m in doc.models)
+
+
+def open_dashboard(base_url: str, query: str = "", timeout: float = 25.0):
+    """Open ``base_url/app`` + ``query`` as a browser does -- the page, its websocket, the
+    document, then ``document_ready`` -- and return the page's Bokeh document once the
+    dashboard has arrived in it (or the document as sent, when it is not the explorer's
+    page). Raises ``TimeoutError`` after ``timeout`` seconds. (Bokeh's synchronous client,
+    ``pull_session``, drops the messages that arrive while it waits for a reply, so it
+    never sees the dashboard.)"""
+    import asyncio
+
+    async def bounded():
+        return await asyncio.wait_for(_open(base_url.rstrip("/"), query, timeout), timeout)
+    try:
+        return asyncio.run(bounded())
+    except asyncio.TimeoutError as error:
+        raise TimeoutError(f"no dashboard within {timeout:g} s") from error
+
+
+async def _open(base: str, query: str, timeout: float):
+    import re
+
     # The page's model types, registered so the client can read the page: Panel's, and
     # the app's own (a Bokeh document naming a type the client lacks cannot be opened).
     import panel  # noqa: F401
     import app.views  # noqa: F401  (the player's frame, the page's behaviour component)
-    from bokeh.client import pull_session
+    from bokeh.client.websocket import WebSocketClientConnectionWrapper
+    from bokeh.document import Document
+    from bokeh.document.events import MessageSentEvent
+    from bokeh.events import DocumentReady
+    from bokeh.protocol import Protocol
+    from bokeh.protocol.receiver import Receiver
+    from tornado.httpclient import AsyncHTTPClient, HTTPRequest
+    from tornado.websocket import websocket_connect
 
+    page = await AsyncHTTPClient().fetch(f"{base}/app{query}", request_timeout=timeout)
+    match = re.search(r'"token"\s*:\s*"([^"]+)"', page.body.decode("utf-8", "replace"))
+    doc = Document()
+    if match is None:  # not a Bokeh page (the busy page, an error page): its title only
+        title = re.search(r"<title>([^<]*)</title>", page.body.decode("utf-8", "replace"))
+        doc.title = title.group(1).strip() if title else ""
+        return doc
+    url = base.replace("http", "ws", 1) + "/app/ws"
+    socket = await websocket_connect(HTTPRequest(url, request_timeout=timeout),
+                                     subprotocols=["bokeh", match.group(1)],
+                                     max_message_size=50 * 2**20)
+    connection, protocol = WebSocketClientConnectionWrapper(socket), Protocol()
+    receiver = Receiver(protocol)
+
+    async def read():
+        while True:
+            fragment = await socket.read_message()
+            if fragment is None:
+                raise ConnectionError("the server closed the page's connection")
+            message = await receiver.consume(fragment)
+            if message is not None:
+                return message
     try:
-        with pull_session(url=f"{base}/app") as session:
-            doc = session.document
-            title, roots = doc.title, len(doc.roots)
-    except Exception as error:  # noqa: BLE001 -- any failure to open a session is unhealthy
-        return f"no session of /app: {type(error).__name__}: {error}"
-    if title != TITLE or roots == 0:
-        return f"/app did not build the dashboard (title {title!r}, {roots} roots): see the server log"
-    return None
+        await read()  # the server's ACK
+        await protocol.create("PULL-DOC-REQ").send(connection)
+        while (reply := await read()).msgtype != "PULL-DOC-REPLY":
+            if reply.msgtype == "ERROR":
+                raise ConnectionError(f"server error: {reply.content.get('text')}")
+        reply.push_to_document(doc)
+        if doc.title != TITLE:
+            return doc
+        ready = MessageSentEvent(doc, "bokeh_event", DocumentReady())
+        await protocol.create("PATCH-DOC", [ready]).send(connection)
+        while not has_dashboard(doc):
+            message = await read()
+            if message.msgtype == "PATCH-DOC":
+                message.apply_to_document(doc)
+        return doc
+    finally:
+        socket.close()
 
 
 def main(argv=None) -> int:
@@ -55,7 +137,7 @@ def main(argv=None) -> int:
                                      description=__doc__.split("\n")[0])
     parser.add_argument("base_url", nargs="?", default=DEFAULT_URL)
     parser.add_argument("--timeout", type=float, default=25.0,
-                        help="seconds for the liveness request (default 25)")
+                        help="seconds for the whole check (default 25)")
     args = parser.parse_args(argv)
     problem = check(args.base_url, args.timeout)
     if problem:

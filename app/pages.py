@@ -74,6 +74,14 @@ class PageGate:
                 self._pages.pop(client, None)
             return admitted
 
+    def has_room(self, client) -> bool:
+        """Whether ``admit`` would take one more page of ``client`` now (nothing counts)."""
+        now = time.monotonic()
+        with self._lock:
+            pages = self._pages.get(client, {})
+            unopened = sum(now - t < self.window_s for t in pages.values())
+            return unopened < self._allowance(client, now)
+
     def built(self, client, page) -> None:
         """``page`` is built: its time counts from now (a build may take long)."""
         with self._lock:

@@ -17,6 +17,7 @@ sys.path.insert(0, str(ROOT))
 
 import panel  # noqa: E402,F401  (registers Panel's Bokeh models for the replicas)
 import app.views  # noqa: E402,F401  (and the app's own: the player's frame, the page's behaviour)
+from app.healthcheck import has_dashboard  # noqa: E402
 from bokeh.client.websocket import WebSocketClientConnectionWrapper  # noqa: E402
 from bokeh.document import Document  # noqa: E402
 from bokeh.events import DocumentReady  # noqa: E402
@@ -143,13 +144,20 @@ class Session:
         self.doc = Document()
         reply.push_to_document(self.doc)
         self.doc.callbacks.on_change_dispatch_to(self)
+        # BokehJS announces a rendered page; the server then sends the dashboard into
+        # the light page it answered with (app.opening).
+        self.doc.callbacks.send_event(DocumentReady())
+        await self._flush()
+        while not has_dashboard(self.doc):
+            message = await self._read()
+            if message is None:
+                raise SessionFailure("connection closed before the dashboard arrived")
+            if message.msgtype == "PATCH-DOC":
+                message.apply_to_document(self.doc, self)
         self.sliders = {name: self._find(f"ctl-{name}") for name in
                         ("theta0", "k_r", "k_theta", "F_N")}
         self.orbit = next(m for m in self.doc.models if getattr(m, "name", None) == "orbit")
         self.readout = self._find("readout-fixed")
-        # BokehJS announces a rendered page; Panel holds model updates until it has.
-        self.doc.callbacks.send_event(DocumentReady())
-        await self._flush()
         self.open_s = time.perf_counter() - start
         self._reader = asyncio.create_task(self._read_loop())
 

@@ -57,10 +57,10 @@ def test_the_busy_page_reloads_itself():
     from bokeh.embed import file_html
     from bokeh.resources import CDN
 
-    import app.main as page_script  # builds a page outside a server: no gate involved
+    from app.opening import busy_page  # the page script's own, without the server hooks
 
     doc = Document()
-    doc.add_root(page_script.busy_page(doc).get_root(doc))
+    doc.add_root(busy_page(doc).get_root(doc))
     html = file_html(doc, CDN)
     assert re.search(r'"document_ready",\[\{[^]]*"CustomJS"[^]]*window\.location\.reload\(\)',
                      html), "the busy page does not reload itself when the browser has it"

@@ -93,25 +93,26 @@ def _slider(sliders: dict, name: str) -> float:
 
 
 def _session_view(base: str, arguments: dict):
-    """Open a session as a browser would (websocket) and read what the page shows:
-    the notice (its HTML and visibility) and the values of the log sliders by title."""
-    import panel.models  # noqa: F401  (the client must know Panel's model types
-    import app.views  # noqa: F401  and the app's own)
-    from bokeh.client import pull_session
+    """Open a session as a browser would (websocket, then ``document_ready``) and read
+    what the page shows: the notice (its HTML and visibility) and the values of the log
+    sliders by title."""
+    from urllib.parse import urlencode
+
     from bokeh.models import Slider
 
+    from app.healthcheck import open_dashboard
     from app.pages import UNOPENED_PAGE_S
 
     # Pages the fuzz tests requested and never opened hold this client's page gate for
     # UNOPENED_PAGE_S: until then the server answers with its short "busy" page.
+    query = "?" + urlencode(arguments, doseq=True)
     deadline = time.monotonic() + UNOPENED_PAGE_S + 10
     while True:
-        with pull_session(url=f"{base}/app", arguments=arguments) as session:
-            doc = session.document
-            notices = [m for m in doc.models if any(
-                "page-notice" in c for c in (getattr(m, "css_classes", None) or []))]
-            sliders = {m.title.split()[0]: m.value for m in doc.models
-                       if isinstance(m, Slider) and m.title}
+        doc = open_dashboard(base, query, timeout=60)
+        notices = [m for m in doc.models if any(
+            "page-notice" in c for c in (getattr(m, "css_classes", None) or []))]
+        sliders = {m.title.split()[0]: m.value for m in doc.models
+                   if isinstance(m, Slider) and m.title}
         if notices or time.monotonic() > deadline:
             break
         time.sleep(1.0)

@@ -53,6 +53,9 @@ PROJECTOR_STYLES, SCREEN_STYLES = ROOT_PROJECTOR, ROOT_SCREEN
 #: Width of the controls (px) on a screen and in projector mode, and folded away.
 SIDEBAR_WIDTH = {False: 290, True: 340}
 FOLDED_WIDTH = 150
+#: CSS class of the page's root: a client that opened a page waits for a model with it
+#: (the dashboard is sent once the browser has the page, ``app.opening``).
+DASHBOARD_CLASS = "dashboard"
 
 
 #: The results each tab shows (``SessionResults.show``): only those are computed.
@@ -320,6 +323,6 @@ class Dashboard(pn.viewable.Viewer):
                                               css_classes=["page-body"],
                                               stylesheets=[BODY_CSS]),
                                self.behaviour, sizing_mode="stretch_both",
-                               styles=self._root_styles, css_classes=["dashboard"],
+                               styles=self._root_styles, css_classes=[DASHBOARD_CLASS],
                                stylesheets=[ROOT_CSS])
         return self._root

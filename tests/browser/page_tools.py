@@ -100,8 +100,14 @@ def wait_for_busy_page_to_pass(page, timeout_ms: float = 90_000) -> int:
 
 
 def wait_for_rendered(page, timeout_ms: float = 45_000) -> float:
-    """Wait until Bokeh has rendered the open page's document and gone idle; seconds."""
+    """Wait until Bokeh has rendered the open page's dashboard and gone idle; seconds.
+
+    The server sends a light page first and the dashboard once the browser has it
+    (``app.opening``): its root (CSS class ``DASHBOARD_CLASS``) is what is waited for."""
+    from app.views.page import DASHBOARD_CLASS
+
     start = time.monotonic()
+    page.wait_for_selector(f".{DASHBOARD_CLASS}", state="attached", timeout=timeout_ms)
     page.wait_for_function(
         "() => window.Bokeh && Bokeh.documents && Bokeh.documents.length > 0 "
         "&& Bokeh.documents[0].roots().length > 0 "
