@@ -5,6 +5,8 @@ between sessions); over-long numbers break nothing; every response forbids frami
 sniffing. The query parser alone: tests/test_url_fuzz.py (its strategies are used here).
 """
 import html
+import http.client
+import itertools
 import math
 import os
 import time
@@ -42,12 +44,23 @@ def served(tmp_path_factory):
             pytest.fail(str(error), pytrace=False)
 
 
+_SOURCES = itertools.count(1)
+
+
 def _get(url: str) -> tuple[int, str]:
+    """GET ``url`` from a loopback address of its own (127.0.1.N): each request is a new
+    client to the server, so none is turned away with the busy page of a client whose
+    earlier pages were never opened (``app.pages.PageGate``), and each runs the page."""
+    n = next(_SOURCES)
+    parts = urllib.parse.urlsplit(url)
+    connection = http.client.HTTPConnection(parts.hostname, parts.port, timeout=60,
+                                            source_address=(f"127.0.{1 + n // 250}.{1 + n % 250}", 0))
     try:
-        with urllib.request.urlopen(url, timeout=60) as response:
-            return response.status, response.read().decode("utf-8", "replace")
-    except urllib.error.HTTPError as error:
-        return error.code, error.read().decode("utf-8", "replace")
+        connection.request("GET", parts.path + (f"?{parts.query}" if parts.query else ""))
+        response = connection.getresponse()
+        return response.status, response.read().decode("utf-8", "replace")
+    finally:
+        connection.close()
 
 
 def _tracebacks(log: Path) -> list[str]:
