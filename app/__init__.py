@@ -4,8 +4,8 @@ Data flows one way: the controls (``state.ExplorerState``, mirrored in the URL b
 ``urlstate``) -> one ``results.SessionResults`` per session, which owns every computation
 (each result a ``slot.Slot``) and hands it to the server's worker processes (``jobs``: the work pool,
 ``lanes``: its workers and fair queues, ``result_cache``: shared results; ``worker``: the
-functions they run; ``pages``: the page gate; ``patches``: a session's update sent as one
-message) -> the views (``views``), renderers that
+functions they run; ``pages``: the page gate; ``opening``: a light page at once, the
+dashboard once the browser has it; ``patches``: a session's update sent as one message) -> the views (``views``), renderers that
 declare which results they draw (``param.depends``) with the figure functions of
 ``figures``. Also: ``reproduce`` (the paper's figures drawn), ``healthcheck`` (the
 container health check), ``export`` (CSV) and ``texts``; ``main.py`` builds the page and

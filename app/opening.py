@@ -10,8 +10,9 @@ seconds. So:
 * the **dashboard is built when a browser opens the page** (Panel's ``onload``, the page's
   ``document_ready``; ``build_when_opened``), in three turns of the event loop: its Python
   objects, then its models (held), then the message that sends them
-  (``app.patches.hold_until_next_tick``). Other requests are answered between the turns,
-  and a page that is never opened (a script fetching URLs) costs the light page only;
+  (``app.patches.release``); its updates wait until the browser says it has drawn the
+  page. Other requests are answered between the turns, and a page that is never opened
+  (a script fetching URLs) costs the light page only;
 * a client whose unopened pages fill its place in the page gate (``app.pages.PageGate``)
   gets the **busy page**, answered before any Bokeh session is made (``BUSY_HTML``, ~1 ms:
   ``app.app_hooks.answer_busy_before_building``), or as a Panel page (``busy_page``) when
@@ -25,7 +26,7 @@ import logging
 import panel as pn
 from bokeh.models import CustomJS
 
-from .patches import hold_until_next_tick
+from .patches import hold_patches, release
 from .views.widgets import caption, look
 
 log = logging.getLogger(__name__)
@@ -39,6 +40,8 @@ BUSY_TEXT = ("It is still building several pages for your address that have not 
 #: away at once does not come back at once).
 AUTO_RELOAD_JS = "setTimeout(() => window.location.reload(), 3000 + 3000 * Math.random());"
 OPENING_TEXT = "Opening the explorer&hellip;"
+#: Seconds the page's updates wait at most for the browser to say it has drawn the page.
+SHOWN_WITHIN_S = 10.0
 FAILED_TEXT = ("**The page could not be built.** The server's log says why; reloading the "
                "page tries again.")
 
@@ -84,7 +87,7 @@ def build_when_opened(shell, make, doc=None) -> None:
     Call while the page is built (``doc``: its document). Panel's ``onload`` runs the
     first turn (``make()``: the page's Python objects; results it asks for start then);
     the models are made in the next turn, under a hold released on the turn after, when
-    the message carrying them is written (``hold_until_next_tick``). Without a server
+    the message carrying them is written (``app.patches.release``). Without a server
     (``doc`` None) the page is built at once.
     """
     if doc is None:
@@ -101,14 +104,45 @@ def _first_turn(shell, make, doc) -> None:
         shell.objects = [pn.pane.Alert(FAILED_TEXT, alert_type="danger",
                                        css_classes=["page-failed"])]
         return
-
-    def attach():
-        hold_until_next_tick(doc)
-        try:
-            shell.objects = [page]
-        except Exception:
-            log.exception("the dashboard could not be shown")
     try:
-        doc.add_next_tick_callback(attach)
+        doc.add_next_tick_callback(lambda: _attach(shell, page, doc))
     except Exception:  # the session closed meanwhile: nothing to show
         log.debug("session gone before its page was shown")
+
+
+def _attach(shell, page, doc) -> None:
+    """The page's models, held and sent on the next turn; then, if the page can say when
+    the browser has drawn it (``page.when_shown``), its updates kept back until then."""
+    def sent():
+        release(doc)
+        if hasattr(page, "when_shown"):
+            _keep_updates_until_shown(page, doc)
+    # Scheduled before the hold: a held document holds the news of a new callback too.
+    doc.add_next_tick_callback(sent)
+    doc.hold("combine")
+    try:
+        shell.objects = [page]
+    except Exception:
+        log.exception("the dashboard could not be shown")
+
+
+def _keep_updates_until_shown(page, doc) -> None:
+    """Keep the page's update messages back until the browser has drawn ``page``, at most
+    ``SHOWN_WITHIN_S`` (``app.patches.hold_patches``). BokehJS builds the views of a page
+    sent in a patch over several turns of its own; a change reaching a view built but not
+    yet drawn fails in Panel's views ("Cannot read properties of undefined (reading
+    'style')"), and results come in that time (a cached one at once)."""
+    send_kept, done = hold_patches(doc), []
+
+    def show(*_):
+        if not done:
+            done.append(True)
+            send_kept()
+
+    def late():
+        if not done:
+            log.warning("the browser did not say within %g s that it had drawn the page; "
+                        "its updates are sent now", SHOWN_WITHIN_S)
+            show()
+    doc.add_timeout_callback(late, int(SHOWN_WITHIN_S * 1000))
+    page.when_shown(show)

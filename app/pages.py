@@ -10,12 +10,14 @@ import gc
 import threading
 import time
 
-#: Pages of one client built but not yet opened by a browser (its document_ready) that a
-#: new page may join; past it the client gets a short "busy" page instead. A page build
-#: holds the server's one event loop for a few tenths of a second, so a burst of page
-#: requests that are never opened (a script fetching URLs) would stall every session and
-#: the liveness endpoint; two bound that to about a second. A class behind one address
-#: (a NAT) opening at once gets some busy pages, which reload themselves.
+#: Pages of one client requested but not yet opened by a browser (its document_ready)
+#: that a new page may join; past it the client gets a short "busy" page instead. Each
+#: page request costs the server's one event loop a light page (~25-75 ms; the dashboard
+#: is built only once opened, ``app.opening``), so a burst of page requests that are
+#: never opened (a script fetching URLs) would still hold every session and the liveness
+#: endpoint for a second per twenty; the busy page, answered before any session is made,
+#: costs ~1 ms. A class behind one address (a NAT) opening at once gets some busy pages,
+#: which reload themselves.
 MAX_UNOPENED_PAGES = 2
 #: Seconds after which a page that was never opened stops counting (a health check's
 #: session, a closed tab).

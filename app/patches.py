@@ -90,3 +90,53 @@ def hold_until_next_tick(doc) -> bool:
         return False
     doc.hold("combine")
     return True
+
+
+async def _not_yet():
+    return None
+
+
+def hold_patches(doc):
+    """Keep back the ``PATCH-DOC`` messages of ``doc``'s server session from its open
+    connections until the returned function is called, which sends them in their order
+    (as one task, so later messages wait behind them) and stops keeping them back.
+
+    Unlike a document hold this leaves the document alone: changes from the browser and
+    the session's callbacks (Panel's debounce runs in one) go on as usual, only their
+    messages wait. Returns a function that does nothing when there is no server session.
+    """
+    session = getattr(getattr(doc, "session_context", None), "_session", None)
+    sockets = [getattr(c, "_socket", None)
+               for c in getattr(session, "_subscribed_connections", ())]
+    sockets = [s for s in sockets if s is not None and "send_message" not in vars(s)]
+    queues = []
+    for socket in sockets:
+        queue, send = [], socket.send_message
+
+        def keep(message, queue=queue, send=send):
+            if queue or message.header.get("msgtype") == "PATCH-DOC":
+                queue.append(message)
+                return _not_yet()
+            return send(message)
+        socket.send_message = keep
+        queues.append((socket, queue, send))
+
+    async def drain(socket, queue, send):
+        while queue:
+            await send(queue[0])
+            queue.pop(0)
+        vars(socket).pop("send_message", None)
+
+    def send_kept() -> int:
+        """Send what was kept back; the number of messages."""
+        import asyncio
+
+        kept = sum(len(queue) for _, queue, _ in queues)
+        for socket, queue, send in queues:
+            if queue:
+                asyncio.ensure_future(drain(socket, queue, send))
+            else:
+                vars(socket).pop("send_message", None)
+        queues.clear()
+        return kept
+    return send_kept

@@ -196,3 +196,69 @@ def test_has_room_agrees_with_admit():
     gate.opened("a", 1)
     assert gate.has_room("a")  # and the open earned credit
     assert gate.allowance("a") == 3
+
+
+class _Page(pn.viewable.Viewer):
+    """A page that says when it has been drawn (as the dashboard does)."""
+
+    def __init__(self, **params):
+        super().__init__(**params)
+        self.text = pn.pane.Markdown("before", css_classes=["dashboard"])
+        self.callbacks = []
+
+    def __panel__(self):
+        return pn.Column(self.text)
+
+    def when_shown(self, callback):
+        self.callbacks.append(callback)
+
+
+def test_updates_wait_until_the_browser_has_drawn_the_page():
+    """BokehJS fails on a change reaching a view it has built but not drawn yet: after
+    the page, its updates wait for the page's word that it is drawn."""
+    from tornado.ioloop import IOLoop
+
+    page = _Page()
+
+    async def main():
+        doc, session, connection, context, _models = served_document(IOLoop.current())
+        context._request = _Request()
+        shell = loading_shell()
+
+        def request():
+            with set_curdoc(doc):
+                doc.add_root(shell.get_root(doc))
+                build_when_opened(shell, lambda: page, doc)
+        await session.with_document_locked(request)
+        pn.state._connected[doc] = True
+        await asyncio.sleep(0.05)
+        connection._socket.messages.clear()
+        await session.with_document_locked(lambda: pn.state._on_load(doc))
+        await _next_turns(connection)
+        sent_page = list(connection._socket.messages)
+
+        def update():
+            with set_curdoc(doc):
+                page.text.object = "after"
+        await session.with_document_locked(update)
+        await asyncio.sleep(0.1)
+        kept = len(connection._socket.messages) - len(sent_page)
+        [shown] = page.callbacks
+        await session.with_document_locked(shown)
+        await asyncio.sleep(0.1)
+        return sent_page, kept, connection._socket.messages[len(sent_page):]
+    sent_page, kept, after = asyncio.run(main())
+    assert len(sent_page) == 1 and "dashboard" in _classes(sent_page[0])
+    assert kept == 0  # the update waited ...
+    [message] = after  # ... until the page was drawn
+    assert message.header["msgtype"] == "PATCH-DOC" and "after" in str(message.content)
+
+
+def test_the_dashboard_says_when_the_browser_has_drawn_it():
+    from app.views import Dashboard
+
+    page, calls = Dashboard(), []
+    page.when_shown(lambda: calls.append(1))
+    page.behaviour.shown = 1  # as the page's behaviour component does once drawn
+    page.behaviour.shown = 2  # drawn again (a tab moved): said once
+    assert calls == [1]

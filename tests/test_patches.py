@@ -195,3 +195,26 @@ def test_a_change_of_the_controls_reaches_the_page_as_one_message():
     # the hold, each left as its own message
     assert len(patches) == 1, ([changed(m) for m in patches], seen)
     assert changed(patches[0]) == [("ModelChanged", "filename"), ("ModelChanged", "value")]
+
+
+def test_kept_messages_leave_in_their_order_once_released():
+    from app.patches import hold_patches
+
+    async def main():
+        doc, session, connection, _context, (source, x, y) = served_document()
+        socket = connection._socket
+        send_kept = hold_patches(doc)
+        from bokeh.document.events import ModelChangedEvent
+
+        first = connection.protocol.create("PATCH-DOC", [ModelChangedEvent(doc, x, "start", 5.0)])
+        other = connection.protocol.create("OK", "1")
+        await socket.send_message(other)  # not a patch, nothing kept before it: it goes
+        await socket.send_message(first)
+        await socket.send_message(other)  # behind a kept patch: it waits too
+        assert socket.messages == [other]
+        assert send_kept() == 2
+        await asyncio.sleep(0.05)
+        assert socket.messages == [other, first, other]
+        assert "send_message" not in vars(socket)  # back to the plain socket
+        assert hold_patches(Document())() == 0  # no server session: nothing kept
+    asyncio.run(main())

@@ -18,6 +18,10 @@ screen width.
   changed after Bokeh creates it.
 * **Narrow screens.** ``narrow`` is True when the page is first shown on a screen
   narrower than ``NARROW_PX`` (a phone): the page folds its controls away there.
+* **Shown.** ``shown`` counts the times the browser has drawn the component. It is the
+  page's last element, so when it is drawn the page is: the server holds its updates
+  until then (``app.opening``), because Panel's views fail on a change that reaches them
+  between their creation and their drawing.
 """
 from __future__ import annotations
 
@@ -39,6 +43,7 @@ class PageBehaviour(JSComponent):
     acked = param.Integer(default=0, doc="the Back/Forward steps the server has restored: "
                           "an address written before the latest step is stale and dropped")
     narrow = param.Boolean(default=False, doc="first shown on a screen < NARROW_PX wide")
+    shown = param.Integer(default=0, doc="how many times the browser has drawn the page")
     page_fraction = param.Number(default=0.1, bounds=(0.01, 1.0),
                                  doc="PageUp/PageDown move a slider by this part of its range")
 
@@ -99,5 +104,6 @@ class PageBehaviour(JSComponent):
       });
       model.narrow = window.innerWidth < NARROW;
       write(model.search, true);  // the address as the page reads it, with no new entry
+      model.shown = model.shown + 1;
     }
     """.replace("NARROW", str(NARROW_PX))

@@ -252,6 +252,14 @@ class Dashboard(pn.viewable.Viewer):
         self.behaviour.replace_search = canonical
         self.behaviour.search = canonical
 
+    def when_shown(self, callback) -> None:
+        """Call ``callback()`` once the browser has drawn the page (``PageBehaviour.shown``,
+        the page's last element)."""
+        def shown(_event):
+            self.behaviour.param.unwatch(watcher)
+            callback()
+        watcher = self.behaviour.param.watch(shown, "shown")
+
     def _on_narrow(self, event) -> None:
         """A phone: the controls start folded above the plots."""
         if hasattr(self, "sidebar"):
