@@ -72,6 +72,26 @@ def busy_page(doc=None):
 SHELL_CSS = ":host(.page-shell) { display: contents !important; }"
 
 
+#: Panel's text views (``PanelMarkupView``: HTML, Markdown, alerts, spinners) make their
+#: ``container`` when first drawn, and their handler of ``visible`` uses it at once: a page
+#: sent in a patch has views that BokehJS builds at once but draws over later turns (the
+#: tabs not on show last), so a change of ``visible`` in between threw "Cannot read
+#: properties of undefined (reading 'style')" and stopped the rest of that message. Until
+#: a view is drawn its ``container`` is a detached stand-in (the drawing reads the model's
+#: state anew). Installed with the light page, before the dashboard arrives.
+MARKUP_GUARD_JS = """
+const html = Bokeh.Models.get("panel.models.markup.HTML");
+const base = html == null ? null : Object.getPrototypeOf(html.prototype.default_view.prototype);
+if (base != null && Object.getOwnPropertyDescriptor(base, "container") == null) {
+  Object.defineProperty(base, "container", {
+    configurable: true,
+    get() { return this._drawn_container ?? document.createElement("div"); },
+    set(value) { this._drawn_container = value; },
+  });
+}
+"""
+
+
 def loading_shell():
     """The light page a request gets: the dashboard takes its place once opened."""
     return pn.Column(
@@ -93,6 +113,7 @@ def build_when_opened(shell, make, doc=None) -> None:
     if doc is None:
         shell.objects = [make()]
         return
+    doc.js_on_event("document_ready", CustomJS(code=MARKUP_GUARD_JS))
     pn.state.onload(lambda: _first_turn(shell, make, doc))
 
 

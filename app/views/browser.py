@@ -18,10 +18,8 @@ screen width.
   changed after Bokeh creates it.
 * **Narrow screens.** ``narrow`` is True when the page is first shown on a screen
   narrower than ``NARROW_PX`` (a phone): the page folds its controls away there.
-* **Shown.** ``shown`` counts the times the browser has drawn the component. It is the
-  page's last element, so when it is drawn the page is: the server holds its updates
-  until then (``app.opening``), because Panel's views fail on a change that reaches them
-  between their creation and their drawing.
+* **Shown.** ``shown`` counts the times the browser has drawn the component, the page's
+  last element: the server keeps the page's updates back until then (``app.opening``).
 """
 from __future__ import annotations
 
@@ -104,6 +102,7 @@ class PageBehaviour(JSComponent):
       });
       model.narrow = window.innerWidth < NARROW;
       write(model.search, true);  // the address as the page reads it, with no new entry
-      model.shown = model.shown + 1;
+      // Said after the frame that draws it (the page's last element).
+      requestAnimationFrame(() => setTimeout(() => { model.shown = model.shown + 1; }, 0));
     }
     """.replace("NARROW", str(NARROW_PX))
