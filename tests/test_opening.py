@@ -262,3 +262,20 @@ def test_the_dashboard_says_when_the_browser_has_drawn_it():
     page.behaviour.shown = 1  # as the page's behaviour component does once drawn
     page.behaviour.shown = 2  # drawn again (a tab moved): said once
     assert calls == [1]
+
+
+def test_the_light_page_guards_panels_text_views_before_the_dashboard_arrives():
+    """Installed with the light page (its document_ready), so it is in place before any
+    view of the dashboard exists; the browser tests exercise it (a hidden tab's spinner)."""
+    from bokeh.document import Document
+    from bokeh.models import CustomJS
+
+    from app.opening import MARKUP_GUARD_JS
+
+    doc = Document()
+    with set_curdoc(doc):
+        build_when_opened(loading_shell(), lambda: None, doc)
+    callbacks = doc.callbacks.js_event_callbacks.get("document_ready", [])
+    assert any(isinstance(c, CustomJS) and c.code == MARKUP_GUARD_JS for c in callbacks)
+    assert 'Object.defineProperty(base, "container"' in MARKUP_GUARD_JS
+    pn.state._onload.pop(doc, None)

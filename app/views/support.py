@@ -94,7 +94,10 @@ class SupportView(pn.viewable.Viewer):
                                           css_classes=["player"], sizing_mode="stretch_width")
         self.export = AnimationExport(state=self.state, results=self.results, what="support")
         if self._doc is not None:
-            pn.state.onload(self.player.ready)  # keyboard shortcuts once the page is up
+            # Keyboard shortcuts (and autoplay) start with a change the page sees: made
+            # once the page is up, after the models it changes were sent (app.opening).
+            player, doc = self.player, self._doc
+            pn.state.onload(lambda: doc.add_timeout_callback(player.ready, 300))
         self._draw()
 
     # ------------------------------------------------------------------ results
