@@ -197,6 +197,7 @@ def test_a_second_copy_of_the_app_shares_the_workers(monkeypatch):
     the first, not on workers of its own."""
     import weakref
 
+    import panel as pn
     from bokeh.application.handlers.directory import DirectoryHandler
     from bokeh.document import Document
     from bokeh.server.contexts import BokehSessionContext
@@ -222,6 +223,7 @@ def test_a_second_copy_of_the_app_shares_the_workers(monkeypatch):
         doc._session_context = weakref.ref(context)
         handler.modify_document(doc)
         assert not handler.failed, handler.error
+        pn.state._on_load(doc)  # the browser has the page: the dashboard is built now
     assert len(built) == 2  # the page was built twice ...
     assert jobs.work_pool() is pool  # ... on one pool of workers
     assert {name: pool.executor(name) for name in jobs.LANES} == executors
