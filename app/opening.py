@@ -161,9 +161,12 @@ def _keep_updates_until_shown(page, doc) -> None:
             send_kept()
 
     def late():
-        if not done:
+        if done:
+            return
+        session = getattr(doc.session_context, "_session", None)
+        if getattr(session, "_subscribed_connections", None):  # a page still open
             log.warning("the browser did not say within %g s that it had drawn the page; "
                         "its updates are sent now", SHOWN_WITHIN_S)
-            show()
+        show()
     doc.add_timeout_callback(late, int(SHOWN_WITHIN_S * 1000))
     page.when_shown(show)
