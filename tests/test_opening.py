@@ -279,3 +279,46 @@ def test_the_light_page_guards_panels_text_views_before_the_dashboard_arrives():
     assert any(isinstance(c, CustomJS) and c.code == MARKUP_GUARD_JS for c in callbacks)
     assert 'Object.defineProperty(base, "container"' in MARKUP_GUARD_JS
     pn.state._onload.pop(doc, None)
+
+
+@pytest.mark.parametrize("connected", [True, False])
+def test_a_page_never_said_drawn_gets_its_updates_after_a_while(monkeypatch, caplog, connected):
+    """The browser's word may never come (a client without the page's code, a tab in the
+    background): the updates go after ``SHOWN_WITHIN_S``, with a warning only while the
+    page is still open (the health check closes its page at once)."""
+    from tornado.ioloop import IOLoop
+
+    import app.opening
+
+    monkeypatch.setattr(app.opening, "SHOWN_WITHIN_S", 0.1)
+    page = _Page()
+
+    async def main():
+        doc, session, connection, context, _models = served_document(IOLoop.current())
+        context._request = _Request()
+        shell = loading_shell()
+
+        def request():
+            with set_curdoc(doc):
+                doc.add_root(shell.get_root(doc))
+                build_when_opened(shell, lambda: page, doc)
+        await session.with_document_locked(request)
+        pn.state._connected[doc] = True
+        await session.with_document_locked(lambda: pn.state._on_load(doc))
+        await _next_turns(connection)
+        if not connected:
+            session.unsubscribe(connection)
+        sent = len(connection._socket.messages)
+
+        def update():
+            with set_curdoc(doc):
+                page.text.object = "after"
+        await session.with_document_locked(update)
+        await asyncio.sleep(0.4)
+        return sent, connection._socket.messages[sent:]
+    with caplog.at_level(logging.WARNING, logger="app.opening"):
+        sent, after = asyncio.run(main())
+    assert ("did not say" in caplog.text) == connected
+    if connected:
+        [message] = after
+        assert "after" in str(message.content)
