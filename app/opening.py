@@ -10,7 +10,7 @@ seconds. So:
 * the **dashboard is built when a browser opens the page** (Panel's ``onload``, the page's
   ``document_ready``; ``build_when_opened``), in three turns of the event loop: its Python
   objects, then its models (held), then the message that sends them
-  (``app.patches.release``); its updates wait until the browser says it has drawn the
+  (``app.patches.hold_until_next_tick``); its updates wait until the browser says it has drawn the
   page. Other requests are answered between the turns, and a page that is never opened
   (a script fetching URLs) costs the light page only;
 * a client whose unopened pages fill its place in the page gate (``app.pages.PageGate``)
@@ -26,7 +26,7 @@ import logging
 import panel as pn
 from bokeh.models import CustomJS
 
-from .patches import hold_patches, release
+from .patches import hold_patches, hold_until_next_tick
 from .views.widgets import caption, look
 
 log = logging.getLogger(__name__)
@@ -107,7 +107,7 @@ def build_when_opened(shell, make, doc=None) -> None:
     Call while the page is built (``doc``: its document). Panel's ``onload`` runs the
     first turn (``make()``: the page's Python objects; results it asks for start then);
     the models are made in the next turn, under a hold released on the turn after, when
-    the message carrying them is written (``app.patches.release``). Without a server
+    the message carrying them is written (``app.patches.hold_until_next_tick``). Without a server
     (``doc`` None) the page is built at once.
     """
     if doc is None:
@@ -133,14 +133,11 @@ def _first_turn(shell, make, doc) -> None:
 
 def _attach(shell, page, doc) -> None:
     """The page's models, held and sent on the next turn; then, if the page can say when
-    the browser has drawn it (``page.when_shown``), its updates kept back until then."""
-    def sent():
-        release(doc)
-        if hasattr(page, "when_shown"):
-            _keep_updates_until_shown(page, doc)
-    # Scheduled before the hold: a held document holds the news of a new callback too.
-    doc.add_next_tick_callback(sent)
-    doc.hold("combine")
+    the browser has drawn it (``page.when_shown``), its updates kept back until then
+    (begun in the turn that sends the page, so that no update slips in before)."""
+    keep = (lambda: _keep_updates_until_shown(page, doc)) if hasattr(page, "when_shown") \
+        else None
+    hold_until_next_tick(doc, then=keep)
     try:
         shell.objects = [page]
     except Exception:

@@ -80,9 +80,7 @@ class PageGate:
         """Whether ``admit`` would take one more page of ``client`` now (nothing counts)."""
         now = time.monotonic()
         with self._lock:
-            pages = self._pages.get(client, {})
-            unopened = sum(now - t < self.window_s for t in pages.values())
-            return unopened < self._allowance(client, now)
+            return self._unopened(client, now) < self._allowance(client, now)
 
     def built(self, client, page) -> None:
         """``page`` is built: its time counts from now (a build may take long)."""
@@ -114,7 +112,10 @@ class PageGate:
     def unopened(self, client) -> int:
         now = time.monotonic()
         with self._lock:
-            return sum(now - t < self.window_s for t in self._pages.get(client, {}).values())
+            return self._unopened(client, now)
+
+    def _unopened(self, client, now: float) -> int:
+        return sum(now - t < self.window_s for t in self._pages.get(client, {}).values())
 
 
 #: Seconds after the last session ended before its memory is handed back to the system.

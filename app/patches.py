@@ -65,8 +65,9 @@ def release(doc) -> int:
     return sent
 
 
-def hold_until_next_tick(doc) -> bool:
-    """Hold ``doc``'s changes until the event loop's next turn, then ``release`` them.
+def hold_until_next_tick(doc, then=None) -> bool:
+    """Hold ``doc``'s changes until the event loop's next turn, then ``release`` them (and
+    call ``then()`` right after, in the same turn, when a hold was begun).
 
     Called as the first reaction to a change of the controls (``Dashboard``): a slider move
     changes ~15 properties across the views (busy markers, readouts, the address bar,
@@ -82,6 +83,8 @@ def hold_until_next_tick(doc) -> bool:
     def later():
         if doc.callbacks.hold_value:
             release(doc)
+        if then is not None:
+            then()
     try:
         # Before the hold: a held document holds the news of a new callback too (Bokeh's
         # ``SessionCallbackAdded``), and the release would never be scheduled.

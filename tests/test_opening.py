@@ -37,22 +37,39 @@ async def _next_turns(connection, turns: int = 50):
     await asyncio.sleep(0.05)
 
 
-def _open(make):
-    """A served light page with ``build_when_opened(make)``; what each step did."""
+async def _requested(make):
+    """A page request served as the page script does it (a light page with
+    ``build_when_opened(make)``): (doc, session, connection, shell, context); keep the
+    context while the page is used (the document holds it by a weak reference)."""
     from tornado.ioloop import IOLoop
 
+    doc, session, connection, context, _models = served_document(IOLoop.current())
+    context._request = _Request()
+    shell = loading_shell()
+
+    def request():
+        with set_curdoc(doc):
+            doc.add_root(shell.get_root(doc))
+            build_when_opened(shell, make, doc)
+    await session.with_document_locked(request)
+    return doc, session, connection, shell, context
+
+
+async def _opened(doc, session, connection):
+    """The browser's websocket opens and its document_ready arrives; the turns after."""
+    pn.state._connected[doc] = True
+    await asyncio.sleep(0.05)
+    connection._socket.messages.clear()
+    await session.with_document_locked(lambda: pn.state._on_load(doc))
+    await _next_turns(connection)
+
+
+def _open(make):
+    """A served light page with ``build_when_opened(make)``; what each step did."""
     seen = {}
 
     async def main():
-        doc, session, connection, context, _models = served_document(IOLoop.current())
-        context._request = _Request()
-        shell = loading_shell()
-
-        def request():  # the page request: the script runs
-            with set_curdoc(doc):
-                doc.add_root(shell.get_root(doc))
-                build_when_opened(shell, make, doc)
-        await session.with_document_locked(request)
+        doc, session, connection, shell, _context = await _requested(make)
         seen["shell after request"] = list(shell.objects)
         pn.state._connected[doc] = True  # the browser's websocket is open
         await asyncio.sleep(0.05)
@@ -89,20 +106,10 @@ def test_the_dashboard_is_built_when_the_page_is_opened_and_sent_in_one_message(
 
 
 def test_nothing_is_built_for_a_page_never_opened():
-    from tornado.ioloop import IOLoop
-
     built = []
 
     async def main():
-        doc, session, _connection, context, _models = served_document(IOLoop.current())
-        context._request = _Request()
-        shell = loading_shell()
-
-        def request():
-            with set_curdoc(doc):
-                doc.add_root(shell.get_root(doc))
-                build_when_opened(shell, lambda: built.append(1), doc)
-        await session.with_document_locked(request)
+        doc, _session, _connection, _shell, _context = await _requested(lambda: built.append(1))
         await asyncio.sleep(0.1)
         pn.state._onload.pop(doc, None)  # the session ends unopened
     asyncio.run(main())
@@ -216,25 +223,11 @@ class _Page(pn.viewable.Viewer):
 def test_updates_wait_until_the_browser_has_drawn_the_page():
     """BokehJS fails on a change reaching a view it has built but not drawn yet: after
     the page, its updates wait for the page's word that it is drawn."""
-    from tornado.ioloop import IOLoop
-
     page = _Page()
 
     async def main():
-        doc, session, connection, context, _models = served_document(IOLoop.current())
-        context._request = _Request()
-        shell = loading_shell()
-
-        def request():
-            with set_curdoc(doc):
-                doc.add_root(shell.get_root(doc))
-                build_when_opened(shell, lambda: page, doc)
-        await session.with_document_locked(request)
-        pn.state._connected[doc] = True
-        await asyncio.sleep(0.05)
-        connection._socket.messages.clear()
-        await session.with_document_locked(lambda: pn.state._on_load(doc))
-        await _next_turns(connection)
+        doc, session, connection, _shell, _context = await _requested(lambda: page)
+        await _opened(doc, session, connection)
         sent_page = list(connection._socket.messages)
 
         def update():
@@ -286,26 +279,14 @@ def test_a_page_never_said_drawn_gets_its_updates_after_a_while(monkeypatch, cap
     """The browser's word may never come (a client without the page's code, a tab in the
     background): the updates go after ``SHOWN_WITHIN_S``, with a warning only while the
     page is still open (the health check closes its page at once)."""
-    from tornado.ioloop import IOLoop
-
     import app.opening
 
     monkeypatch.setattr(app.opening, "SHOWN_WITHIN_S", 0.1)
     page = _Page()
 
     async def main():
-        doc, session, connection, context, _models = served_document(IOLoop.current())
-        context._request = _Request()
-        shell = loading_shell()
-
-        def request():
-            with set_curdoc(doc):
-                doc.add_root(shell.get_root(doc))
-                build_when_opened(shell, lambda: page, doc)
-        await session.with_document_locked(request)
-        pn.state._connected[doc] = True
-        await session.with_document_locked(lambda: pn.state._on_load(doc))
-        await _next_turns(connection)
+        doc, session, connection, _shell, _context = await _requested(lambda: page)
+        await _opened(doc, session, connection)
         if not connected:
             session.unsubscribe(connection)
         sent = len(connection._socket.messages)

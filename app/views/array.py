@@ -58,8 +58,8 @@ class ArrayView(pn.viewable.Viewer):
         if self._doc is not None:
             # Keys and autoplay start with a change the page sees: once the page has loaded
             # (a result that came before), or once the new models are in a loaded page.
-            player = self.player
-            pn.state.onload(lambda: self._doc.add_timeout_callback(player.ready, 300))
+            player, doc = self.player, self._doc
+            pn.state.onload(lambda: player.ready_soon(doc))
         m = motion.model
         self.status.object = (
             f"{motion.n_supports} supports on a {motion.n_rows} × {motion.n_cols} grid, "

@@ -97,7 +97,7 @@ class SupportView(pn.viewable.Viewer):
             # Keyboard shortcuts (and autoplay) start with a change the page sees: made
             # once the page is up, after the models it changes were sent (app.opening).
             player, doc = self.player, self._doc
-            pn.state.onload(lambda: doc.add_timeout_callback(player.ready, 300))
+            pn.state.onload(lambda: player.ready_soon(doc))
         self._draw()
 
     # ------------------------------------------------------------------ results
