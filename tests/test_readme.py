@@ -6,8 +6,8 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-SERVE_COMMAND = "pip install . && panel serve app"
-TEST_COMMAND = 'pip install -e ".[test]" && python -m pytest'
+SERVE_COMMAND = "pip install -c constraints.txt . && panel serve app"
+TEST_COMMAND = 'pip install -c constraints.txt -e ".[test]" && python -m pytest'
 
 
 def _first_code_block(text: str) -> list[str]:
