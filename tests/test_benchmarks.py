@@ -100,3 +100,34 @@ def test_run_all_dashboard_server_side(tmp_path):
         assert payload["binary_kB"] > payload["json_kB"] > 0  # the arrays travel as binary
         assert cost[f"{move} move: update + patch"]["p50_ms"] > 0
     assert "binary buffers" in report
+
+
+def test_busy_core_runs_the_command_beside_a_spinning_process():
+    """``busy_core.py`` keeps a spinner running while the command runs (the command sees a
+    process using a whole core), passes the command's exit code on and leaves no spinner."""
+    probe = ("import os, sys, time\n"
+             "def spinners():\n"
+             "    found = []\n"
+             "    for pid in filter(str.isdigit, os.listdir('/proc')):\n"
+             "        try:\n"
+             "            cmd = open(f'/proc/{pid}/cmdline', 'rb').read()\n"
+             "        except OSError:\n"
+             "            continue\n"
+             "        if b'deadline = ' + b'time.monotonic()' in cmd:\n"
+             "            found.append(pid)\n"
+             "    return found\n"
+             "def cpu(pid):\n"
+             "    f = open(f'/proc/{pid}/stat').read().rsplit(')', 1)[1].split()\n"
+             "    return (int(f[11]) + int(f[12])) / os.sysconf('SC_CLK_TCK')\n"
+             "pids = spinners()\n"
+             "assert len(pids) == 1, pids\n"
+             "c0 = cpu(pids[0]); time.sleep(1.0); used = cpu(pids[0]) - c0\n"
+             "assert used > 0.3, used\n"
+             "sys.exit(7)\n")
+    done = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "busy_core.py"), "--",
+                           sys.executable, "-c", probe], capture_output=True, text=True,
+                          timeout=60)
+    assert done.returncode == 7, done.stderr
+    assert "1 core(s) kept busy" in done.stderr
+    left = subprocess.run(["pgrep", "-f", "deadline = time.monotonic"], capture_output=True)
+    assert left.returncode == 1, "a spinner outlived the command"
