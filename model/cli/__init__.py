@@ -13,6 +13,8 @@ sweep
 reproduce
     Every figure's data of the paper as CSV, and its findings checked in a report
     (``report.md``, ``index.html``); ``python -m app.reproduce`` adds the pictures.
+pack
+    The offline explorer: one self-contained HTML file that computes in the browser.
 warmup
     Compile the kernel into numba's on-disk cache (run once after installing).
 
@@ -33,7 +35,7 @@ from ..options import METHODS, SolverOptions
 from ..params import Params
 from ..quantities import describe
 from ..support import simulate_support
-from . import array, design, reproduce, snippet, sweep
+from . import array, design, pack, reproduce, snippet, sweep
 from ._common import (FIELD_FLAGS, PROG, CommandParser, UsageError, add_stiffness,
                       as_usage_error, check_memory, jsonable, real, stiffness, table, whole)
 
@@ -202,6 +204,7 @@ def build_parser() -> CommandParser:
     design.add_command(commands)
     sweep.add_command(commands)
     reproduce.add_command(commands)
+    pack.add_command(commands)
     _add_warmup(commands)
     snippet.add_flag(commands)
     return parser

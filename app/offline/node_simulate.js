@@ -1,0 +1,26 @@
+#!/usr/bin/env node
+/* Run the JavaScript kernel from Node: `node node_simulate.js < inputs.json > results.json`.
+ *
+ * Reads a JSON array of simulate() inputs ({k_r, k_theta, F_N, theta0, beta, rtol, ...})
+ * from standard input and writes the JSON array of their results (the quantities of
+ * `micropillar support --json`); an input that is refused gives {"error": "..."} in its
+ * place. Used by the agreement tests and the benchmark (docs/offline.md).
+ */
+"use strict";
+const kernel = require("./kernel.js");
+
+let text = "";
+process.stdin.setEncoding("utf8");
+process.stdin.on("data", (chunk) => { text += chunk; });
+process.stdin.on("end", () => {
+  const inputs = JSON.parse(text);
+  const results = inputs.map((input) => {
+    try {
+      return kernel.simulate(input);
+    } catch (error) {
+      return {error: error.message};
+    }
+  });
+  process.stdout.write(JSON.stringify(results, (key, value) =>
+    (value instanceof Float64Array ? Array.from(value) : value)));
+});

@@ -1,0 +1,123 @@
+"""The offline explorer's speed: one trajectory of the JavaScript kernel in Node and in
+Chromium, the page's open-to-first-plot time and slider key press -> redrawn.
+
+    python benchmarks/bench_offline.py [--repeats 30] [--presses 40]
+
+The trajectory is the pendulum at theta0 = pi/2, F_N = 1 at rtol 3e-7 (its exit-state error,
+7e-7,
+against Python's DOP853 at rtol 1e-13 is printed). Each figure is median [min-max] over
+``--repeats`` batches (time per trajectory in a batch of 50, after a warm-up of 300). The
+targets (docs/offline.md): one trajectory <= 1 ms; open -> first plot <= 2 s; key press ->
+redrawn <= 50 ms p95; file <= 5 MB. Numbers measured while other jobs run are not
+trustworthy: measure on a quiet machine (and with ``busy_core.py`` for a shared server).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import shutil
+import statistics
+import subprocess
+import tempfile
+import time
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+
+CASE = dict(k_r=3.0, k_theta=0.01, F_N=1.0, theta0=math.pi / 2, rtol=3e-7)  # error 7e-7
+BATCH, WARMUP = 50, 300
+TIMING = """
+(function (K, input, batch, warm, repeats) {
+  for (let i = 0; i < warm; i++) K.simulate(input);
+  const out = [];
+  for (let j = 0; j < repeats; j++) {
+    const t0 = performance.now();
+    for (let i = 0; i < batch; i++) K.simulate(input);
+    out.push((performance.now() - t0) / batch);
+  }
+  return out;
+})"""
+
+
+def spread(values, unit="ms", digits=3) -> str:
+    v = sorted(values)
+    return f"{statistics.median(v):.{digits}f} [{v[0]:.{digits}f}-{v[-1]:.{digits}f}] {unit}"
+
+
+def exit_error() -> float:
+    from model import Params, simulate_support
+
+    kernel = resources.files("app.offline") / "node_simulate.js"
+    got = json.loads(subprocess.run(["node", str(kernel)], input=json.dumps([CASE]), text=True,
+                                    capture_output=True, check=True).stdout)[0]
+    params = Params(**{k: v for k, v in CASE.items() if k != "rtol"})
+    ref = simulate_support(params, rtol=1e-13, method="reference")
+    return float(np.max(np.abs(np.array(got["state_out"]) - ref.state_out)))
+
+
+def node_times(repeats: int) -> list[float]:
+    kernel = str(resources.files("app.offline") / "kernel.js")
+    code = (f"const K = require({json.dumps(kernel)});"
+            f"console.log(JSON.stringify({TIMING}(K, {json.dumps(CASE)}, {BATCH}, {WARMUP}, {repeats})))")
+    return json.loads(subprocess.run(["node", "-e", code], text=True, capture_output=True,
+                                     check=True).stdout)
+
+
+def browser_figures(path: Path, repeats: int, presses: int) -> dict:
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path="/usr/bin/chromium", headless=True,
+                                    args=["--no-sandbox", "--disable-gpu"])
+        context = browser.new_context(viewport={"width": 1280, "height": 720})
+        context.route("**/*", lambda r: r.continue_() if r.request.url.startswith("file:")
+                      else r.abort())
+        page = context.new_page()
+        t0 = time.perf_counter()
+        page.goto(path.as_uri())
+        page.wait_for_function("document.documentElement.getAttribute('data-drawn') >= '1'")
+        first = time.perf_counter() - t0
+        times = page.evaluate(f"{TIMING}(MicropillarKernel, {json.dumps(CASE)}, {BATCH}, "
+                              f"{WARMUP}, {repeats})")
+        handle = page.locator(".noUi-handle").nth(3)
+        handle.focus()
+        redraw = []
+        for i in range(presses):
+            drawn = page.evaluate("explorer.drawn")
+            t = time.perf_counter()
+            handle.press("ArrowLeft" if i % 2 else "ArrowRight")
+            page.wait_for_function(f"explorer.drawn > {drawn}", polling="raf")
+            redraw.append(1000 * (time.perf_counter() - t))
+        browser.close()
+    return dict(first=first, times=times, redraw=redraw)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=30)
+    parser.add_argument("--presses", type=int, default=40)
+    args = parser.parse_args()
+    if shutil.which("node") is None:
+        raise SystemExit("node is not installed")
+    from app.offline.pack import write
+
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "explorer.html"
+        size = write(path)
+        print(f"file: {size / 1e6:.2f} MB ({size:,} bytes)")
+        print(f"exit-state error of the benchmark case: {exit_error():.1e}")
+        print(f"one trajectory, Node {subprocess.run(['node', '--version'], text=True, capture_output=True).stdout.strip()}: "
+              f"{spread(node_times(args.repeats))}")
+        figures = browser_figures(path, args.repeats, args.presses)
+    print(f"one trajectory, Chromium (page's main thread): {spread(figures['times'])}")
+    print(f"open from file:// -> first plot: {figures['first']:.2f} s")
+    redraw = sorted(figures["redraw"])
+    p95 = redraw[min(len(redraw) - 1, math.ceil(0.95 * len(redraw)) - 1)]
+    print(f"slider key press -> redrawn: {spread(redraw, digits=1)}, p95 {p95:.1f} ms "
+          f"(Playwright's round trips included)")
+
+
+if __name__ == "__main__":
+    main()
