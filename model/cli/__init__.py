@@ -14,7 +14,8 @@ reproduce
     Every figure's data of the paper as CSV, and its findings checked in a report
     (``report.md``, ``index.html``); ``python -m app.reproduce`` adds the pictures.
 pack
-    The offline explorer: one self-contained HTML file that computes in the browser.
+    The offline explorer: one self-contained HTML file that computes in the browser
+    (added by the app through the ``micropillar.commands`` entry point).
 warmup
     Compile the kernel into numba's on-disk cache (run once after installing).
 
@@ -35,7 +36,9 @@ from ..options import METHODS, SolverOptions
 from ..params import Params
 from ..quantities import describe
 from ..support import simulate_support
-from . import array, design, pack, reproduce, snippet, sweep
+from importlib.metadata import entry_points
+
+from . import array, design, reproduce, snippet, sweep
 from ._common import (FIELD_FLAGS, PROG, CommandParser, UsageError, add_stiffness,
                       as_usage_error, check_memory, jsonable, real, stiffness, table, whole)
 
@@ -189,6 +192,12 @@ def _run_warmup(args) -> int:
 
 # --------------------------------------------------------------------------- entry point
 
+#: Entry-point group of commands that other installed packages add (``name = "module:add"``,
+#: ``add(commands)`` adds a subparser): the app's ``pack`` is one, so ``model`` never
+#: imports the app.
+COMMANDS_GROUP = "micropillar.commands"
+
+
 def build_parser() -> CommandParser:
     """The ``python -m model`` parser with every command."""
     parser = CommandParser(
@@ -204,7 +213,12 @@ def build_parser() -> CommandParser:
     design.add_command(commands)
     sweep.add_command(commands)
     reproduce.add_command(commands)
-    pack.add_command(commands)
+    for command in entry_points(group=COMMANDS_GROUP):  # commands of other packages (app's pack)
+        try:
+            add = command.load()
+        except ModuleNotFoundError:  # declared by an install whose code is not importable here
+            continue
+        add(commands)
     _add_warmup(commands)
     snippet.add_flag(commands)
     return parser

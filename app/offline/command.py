@@ -1,15 +1,18 @@
 """``micropillar pack --out explorer.html``: the offline explorer, one self-contained HTML
 file that computes in the browser (docs/offline.md).
 
-The page is built by ``app.offline.pack`` (it draws with Bokeh), imported only when the
-command runs: ``model`` itself imports no plotting code. Exit codes: 0 written, 2 bad usage
+The command is the app's (the page is drawn with Bokeh): ``model``'s command line finds it
+through the ``micropillar.commands`` entry point declared in pyproject.toml, so ``model``
+imports no plotting code. Exit codes: 0 written, 2 bad usage
 (the folder of ``--out`` does not exist, or the file cannot be written).
 """
 from __future__ import annotations
 
 from pathlib import Path
 
-from ._common import UsageError
+from model.cli._common import UsageError
+
+from .pack import write
 
 
 def add_command(commands) -> None:
@@ -33,8 +36,6 @@ def run(args) -> int:
     if not out.parent.is_dir():
         raise UsageError("--out", f"the folder {out.parent} of {args.out} does not exist; create it "
                          f"or choose another")
-    from app.offline.pack import write  # the page is drawn with Bokeh: app-side, lazily
-
     try:
         size = write(out)
     except OSError as error:
