@@ -9,8 +9,8 @@ array in physical units.
   where it enters the range (``POINT_STATUS``);
 * ``evaluate``: the array for an orientation distribution (Eq. 10), with the drive force,
   power, contact time and excursions back in physical units (``DesignPoint``), each with
-  the array's error bar carried over (``PHYSICAL``; ``physical_rows`` says them with SI
-  prefixes, ``headline`` the friction in one sentence).
+  the array's error bar carried over (``PHYSICAL``; ``model.design_table`` says them
+  with SI prefixes, as a table, a CSV file and a one-sentence headline).
 """
 from __future__ import annotations
 
@@ -21,10 +21,10 @@ import numpy as np
 
 from .params import Params
 from .regimes import EXPLORED_MAP, MAP_NOTE, MODEL_RANGE, REGIME_SPLIT, map_status, regime_of
-from .units import F_N_MAX, PillarDesign, measure_text, to_si
+from .units import F_N_MAX, PillarDesign, to_si
 
 __all__ = ["regime_intervals", "speed_line", "POINT_STATUS", "model_point", "model_params",
-           "DesignPoint", "evaluate", "PHYSICAL", "physical_rows", "headline"]
+           "DesignPoint", "evaluate", "PHYSICAL"]
 
 #: A design's results in physical units: key of ``DesignPoint`` -> (what it is, SI unit).
 PHYSICAL = {
@@ -239,45 +239,3 @@ def _carried(a, force: float, V0: float, time: float) -> tuple[dict, dict]:
         bounds["FTy_N"] = (lo * force, hi * force)
     return ({k: float(v) for k, v in errors.items()},
             {k: (float(lo), float(hi)) for k, (lo, hi) in bounds.items()})
-
-
-def physical_rows(record: dict) -> list[tuple[str, str, str]]:
-    """(key, what it is, its value with SI prefix and error bar) for each ``PHYSICAL``
-    result of a ``DesignPoint.to_dict`` record."""
-    errors, bounds = record.get("errors") or {}, record.get("bounds") or {}
-    return [(key, what, measure_text(record[key], unit, errors.get(key), bounds.get(key),
-                                     converged=record.get("success", True)))
-            for key, (what, unit) in PHYSICAL.items()]
-
-
-def headline(record: dict) -> str:
-    """The design's friction in one plain sentence, from a ``DesignPoint.to_dict`` record:
-    F_T,x/(mu0 F_N) against 1, a rigid surface (Eq. 10), with its error bar or bounds."""
-    a = record["array"]
-    value = a["FTx_over_mu0FN"]
-    if value is None or not math.isfinite(value):
-        return "This design: its friction could not be computed."
-    lo_hi = (a.get("bounds") or {}).get("FTx_over_mu0FN")
-    if lo_hi is not None:
-        lo, hi = (100 * (x - 1) for x in lo_hi)
-        return (f"This design: friction not known yet (not converged): between "
-                f"{_percent(lo)} and {_percent(hi)} a rigid surface.")
-    error = a["quadrature_error"].get("FTx_over_mu0FN", math.nan)
-    change = 100 * (value - 1)
-    if not math.isfinite(error):
-        return (f"This design: friction ≈ {_percent(change)} a rigid surface "
-                f"(not converged: no error bar).")
-    if abs(change) <= 100 * error:
-        return (f"This design: friction as on a rigid surface, within "
-                f"± {_g2(100 * error)} %.")
-    return f"This design: friction ≈ {_percent(change)} a rigid surface (± {_g2(100 * error)} %)."
-
-
-def _g2(x: float) -> str:
-    """Two significant figures, without an exponent up to 1e6."""
-    return f"{x:.2g}" if abs(x) < 100 or not math.isfinite(x) else f"{x:.0f}"
-
-
-def _percent(change: float) -> str:
-    """A relative change in words: "0.2 % above", "16 % below"."""
-    return f"{_g2(abs(change))} % {'above' if change >= 0 else 'below'}"

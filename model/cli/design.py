@@ -16,8 +16,7 @@ import math
 import re
 
 from ..design import FAMILIES, OBJECTIVES, OptimisationCancelled, optimise
-from ..design_point import headline, physical_rows
-from ..distribution_result import value_text
+from ..design_table import headline, rows as design_rows
 from ..params import Params
 from .sweep import POINT_BYTES
 from ._common import (FIELD_FLAGS, UsageError, add_stiffness, beta_value, check_memory,
@@ -256,8 +255,5 @@ def _pillar_summary(r: dict) -> str:
             ("success", r["success"], r["message"]),
             ("outcome", r["array"]["outcome"], "ok, or what ran out"),
             ("headline", "", headline(r)),
-            ("FTx_over_mu0FN", value_text(r["array"], "FTx_over_mu0FN"),
-             "apparent friction (Eq. 10)"),
-            ("FTy_over_mu0FN", value_text(r["array"], "FTy_over_mu0FN"), "transverse force"),
-            *((key, text, what) for key, what, text in physical_rows(r))]))
+            *((row["key"], row["text"], row["what"]) for row in design_rows(r))]))
     return table(sections)
