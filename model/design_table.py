@@ -68,7 +68,9 @@ def table_csv(record: dict) -> str:
     quantity (an empty error: none known; lower/upper: the bounds of a result that did not
     converge)."""
     table = rows(record)
-    columns = {name: [r[name] for r in table]
+    # An unknown error or bound is an empty cell, not a number that could pass for one.
+    columns = {name: [r[name] if not (isinstance(r[name], float) and math.isnan(r[name]))
+                      else "" for r in table]
                for name in ("key", "what", "value", "error", "lower", "upper", "unit")}
     design = record["design"]
     header = {"kind": "design", "version": __version__,
@@ -83,10 +85,7 @@ def table_csv(record: dict) -> str:
                               "converge)",
               "column lower/upper": "an interval that holds the value whatever the members "
                                     "that did not finish give (only when some did not)"}
-    text = csvfile.text(columns, header)
-    # An unknown error or bound is an empty cell, not a number that could pass for one.
-    return "\n".join(line.replace(",nan", ",") if not line.startswith("#") else line
-                     for line in text.split("\n"))
+    return csvfile.text(columns, header)
 
 
 def headline(record: dict) -> str:

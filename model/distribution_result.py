@@ -169,8 +169,8 @@ def _bounds(mean, e, filled, mu_max, m0) -> tuple[dict, dict]:
     for key, (q, weight, column) in BOUNDED.items():
         known = mean[q] - filled[column]
         half = mu_max * filled[weight] + e[q]
-        out[key] = ((known - half) / m0, (known + half) / m0)
-        values[key] = mean[q] / m0
+        out[key] = (float((known - half) / m0), float((known + half) / m0))
+        values[key] = float(mean[q] / m0)
     return out, values
 
 
@@ -242,7 +242,7 @@ def _assemble(params, distribution, psi, atom_sum, atom_diag, atoms, quad, m0, c
         "Nc_over_Nc0": e["t_out"] / params.L0,
         **{f"work_split.{k}": v for k, (_, v) in split.items()}}
     bounds, values = {}, {}
-    if n_failed and not beta_cut:
+    if n_failed and not beta_cut and not nothing:
         # Each member's mean friction over its load is at most max mu(v) <= |mu_s| (Eq. 4).
         bounds, values = _bounds(mean, e, filled, abs(params.mu_s), m0)
     if n_failed or beta_cut:
