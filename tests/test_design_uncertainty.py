@@ -129,3 +129,43 @@ def test_the_command_line_says_not_converged_in_text_and_json():
     line = next(x for x in text.stdout.splitlines() if x.strip().startswith("FTx_over_mu0FN "))
     assert "not converged: between" in line and "±" not in line
     assert "friction not known yet" in text.stdout
+
+
+def test_the_design_tab_shows_bounds_and_greys_out_stale_numbers(stiff_design):
+    """The Design tab's readouts (without a server): the headline, no small error bar on
+    a result cut short, and the previous inputs' numbers struck through under a banner
+    while a new result computes; the CSV download is the table."""
+    from app.results import SessionResults
+    from app.state import ExplorerState
+    from app.views.design_readouts import DesignReadouts
+
+    results = SessionResults(ExplorerState())
+    view = DesignReadouts(state=results.state, results=results)
+    record = stiff_design.to_dict()
+    results.design_array = record
+    text = view.table.object
+    assert "friction not known yet" in text and "not converged: between" in text
+    assert "±" not in text  # no error bar that looks like one
+    assert not view.banner.visible and "stale" not in view.table.css_classes
+    assert not view.download.disabled
+    assert view._csv().getvalue() == table_csv(record)
+    results.busy = [*results.busy, "design_array"]  # new inputs: the old numbers stay
+    assert view.banner.visible and "previous inputs" in view.banner.object
+    assert "at most 30 s" in view.banner.object
+    assert "stale" in view.table.css_classes and view.download.disabled
+
+
+def test_a_real_pillar_off_the_map_is_drawn_at_its_edge_with_its_values():
+    from app.figures.design import design_map_data
+    from app.worker import compute_design_point
+
+    point = compute_design_point(PillarDesign.example(V0="1 cm/s"))
+    assert point["point"]["k_r"] > 1e6 and point["point"]["k_theta"] > 1e7
+    data, xr, yr = design_map_data(point)
+    star = data["design_point"]
+    assert xr[0] < star["k_r"][0] < xr[1] and yr[0] < star["k_theta"][0] < yr[1]
+    assert star["note"] == ["→↑ off the map: k̃_r = 5.5e6, k̃_θ = 4.9e7"]
+    inside = compute_design_point(PillarDesign.example(V0="100 m/s", F_N="1 N"))
+    data, _, _ = design_map_data(inside)
+    assert data["design_point"]["note"] == [""]
+    assert data["design_point"]["k_r"] == [inside["point"]["k_r"]]
