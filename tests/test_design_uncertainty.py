@@ -151,7 +151,7 @@ def test_the_design_tab_shows_bounds_and_greys_out_stale_numbers(stiff_design):
     assert view._csv().getvalue() == table_csv(record)
     results.busy = [*results.busy, "design_array"]  # new inputs: the old numbers stay
     assert view.banner.visible and "previous inputs" in view.banner.object
-    assert "at most 30 s" in view.banner.object
+    assert "up to 30 s" in view.banner.object
     assert "stale" in view.table.css_classes and view.download.disabled
 
 
@@ -164,7 +164,7 @@ def test_a_real_pillar_off_the_map_is_drawn_at_its_edge_with_its_values():
     data, xr, yr = design_map_data(point)
     star = data["design_point"]
     assert xr[0] < star["k_r"][0] < xr[1] and yr[0] < star["k_theta"][0] < yr[1]
-    assert star["note"] == ["→↑ off the map: k̃_r = 5.5e6, k̃_θ = 4.9e7"]
+    assert star["note"] == ["off the map →↑\nk̃_r = 5.5e6\nk̃_θ = 4.9e7"]
     inside = compute_design_point(PillarDesign.example(V0="100 m/s", F_N="1 N"))
     data, _, _ = design_map_data(inside)
     assert data["design_point"]["note"] == [""]

@@ -53,8 +53,8 @@ def design_map_data(point: dict | None, cover: dict | None = None) -> tuple[dict
     off = (x, y) != (p["k_r"], p["k_theta"])
     data["design_point"] = {
         "k_r": [x], "k_theta": [y], "label": [f"V₀ = {point['V0_m_per_s']:.3g} m/s"],
-        "note": [f"{_arrow(p['k_r'], x)}{_arrow(p['k_theta'], y, True)} off the map: "
-                 f"k̃_r = {_e(p['k_r'])}, k̃_θ = {_e(p['k_theta'])}" if off else ""]}
+        "note": [f"off the map {_arrow(p['k_r'], x)}{_arrow(p['k_theta'], y, True)}\n"
+                 f"k̃_r = {_e(p['k_r'])}\nk̃_θ = {_e(p['k_theta'])}" if off else ""]}
     if c is not None and c.get("scale", 1.0) < 1.0:
         data["design_computed"] = {"k_r": [c["k_r"]], "k_theta": [c["k_theta"]]}
     data["design_line"] = {"k_r": list(line["k_r"]), "k_theta": list(line["k_theta"]),

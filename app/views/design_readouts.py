@@ -90,8 +90,9 @@ class DesignReadouts(pn.viewable.Viewer):
         most = self.results.BUDGET_S["design_array"]
         what = ("**Updating:** the numbers below are for the previous inputs. "
                 if shown else "**Computing the array** ")
-        self.banner.object = (f"{what}Computing the new result: {seconds:.0f} s of at most "
-                              f"{most:.0f} s.")
+        self.banner.object = (f"{what}Computing the new result: {seconds:.0f} s so far (the "
+                              f"server gives it up to {most:.0f} s of computing, once a "
+                              f"worker is free).")
 
     def _tick(self, busy: bool) -> None:
         """Refresh the banner's seconds once a second while the array is computed."""
