@@ -8,7 +8,9 @@ array in physical units.
   the design's own inside the model range and otherwise the point of its speed line
   where it enters the range (``POINT_STATUS``);
 * ``evaluate``: the array for an orientation distribution (Eq. 10), with the drive force,
-  power, contact time and excursions back in physical units (``DesignPoint``).
+  power, contact time and excursions back in physical units (``DesignPoint``), each with
+  the array's error bar carried over (``PHYSICAL``; ``model.design_table`` says them
+  with SI prefixes, as a table, a CSV file and a one-sentence headline).
 """
 from __future__ import annotations
 
@@ -22,7 +24,18 @@ from .regimes import EXPLORED_MAP, MAP_NOTE, MODEL_RANGE, REGIME_SPLIT, map_stat
 from .units import F_N_MAX, PillarDesign, to_si
 
 __all__ = ["regime_intervals", "speed_line", "POINT_STATUS", "model_point", "model_params",
-           "DesignPoint", "evaluate"]
+           "DesignPoint", "evaluate", "PHYSICAL"]
+
+#: A design's results in physical units: key of ``DesignPoint`` -> (what it is, SI unit).
+PHYSICAL = {
+    "FTx_N": ("drive force F_T,x", "N"),
+    "FTy_N": ("sideways force F_T,y", "N"),
+    "power_W": ("power F_T,x V₀", "W"),
+    "dissipated_power_W": ("dissipated power", "W"),
+    "contact_time_s": ("contact time", "s"),
+    "excursion_r_um": ("excursion of r (rms)", "um"),
+    "excursion_theta_um": ("excursion of θ (rms, arc at r₀)", "um"),
+}
 
 
 def _intervals(a: float, b: float) -> dict:
@@ -149,6 +162,10 @@ class DesignPoint:
     contact_time_s: float  # <tau_out>_p r0 / V0
     excursion_r_um: float  # Delta r_rms r0
     excursion_theta_um: float  # Delta theta_rms r0 (arc at the rest radius)
+    # The array's error bars carried over to the ``PHYSICAL`` results (NaN: none known),
+    # and, when members were filled, the intervals that hold them (``array.bounds``).
+    errors: dict = None
+    bounds: dict = None
 
     @property
     def success(self) -> bool:
@@ -164,6 +181,8 @@ class DesignPoint:
                 "dissipated_power_W": self.dissipated_power_W,
                 "contact_time_s": self.contact_time_s, "excursion_r_um": self.excursion_r_um,
                 "excursion_theta_um": self.excursion_theta_um, "array": a.to_dict(),
+                "errors": dict(self.errors or {}),
+                "bounds": {k: list(v) for k, v in (self.bounds or {}).items()},
                 "success": self.success, "message": a.message}
 
 
@@ -184,6 +203,8 @@ def evaluate(design: PillarDesign, distribution=None, psi: float = 0.0, beta="se
     m0 = mu0(params)
     FTx, FTy = a.FTx_over_mu0FN * m0 * design.F_N, a.FTy_over_mu0FN * m0 * design.F_N
     split = a.work_split
+    errors, bounds = _carried(a, m0 * design.F_N, design.V0,
+                              point["L0"] * design.r0 / design.V0)
     return DesignPoint(
         design=design, point=design.dimensionless(), computed=point, status=status,
         status_message=message, regime=regime_of(point["k_r"], point["k_theta"]),
@@ -191,4 +212,30 @@ def evaluate(design: PillarDesign, distribution=None, psi: float = 0.0, beta="se
         power_W=FTx * design.V0, dissipated_power_W=FTx * design.V0 * (split["D_x"] + split["D_y"]),
         contact_time_s=a.Nc_over_Nc0 * point["L0"] * design.r0 / design.V0,
         excursion_r_um=a.dr_rms * design.r0 * 1e6,
-        excursion_theta_um=a.dtheta_rms * design.r0 * 1e6)
+        excursion_theta_um=a.dtheta_rms * design.r0 * 1e6, errors=errors, bounds=bounds)
+
+
+def _carried(a, force: float, V0: float, time: float) -> tuple[dict, dict]:
+    """The array's error bars and bounds (``DistributionArrayResult.quadrature_error``,
+    ``.bounds``) in physical units: forces scale by mu0 F_N, power by V0 more, the contact
+    time by L0 r0/V0; the dissipated power adds the relative errors of F_T,x and of
+    (D_x + D_y)/W. The excursions have no estimate (NaN)."""
+    q = a.quadrature_error
+    share = a.work_split["D_x"] + a.work_split["D_y"]
+    rel_F = q["FTx_over_mu0FN"] / abs(a.FTx_over_mu0FN) if a.FTx_over_mu0FN else math.nan
+    rel_D = (q["work_split.D_x"] + q["work_split.D_y"]) / share if share else math.nan
+    P = a.FTx_over_mu0FN * force * V0
+    errors = {"FTx_N": q["FTx_over_mu0FN"] * force, "FTy_N": q["FTy_over_mu0FN"] * force,
+              "power_W": q["FTx_over_mu0FN"] * force * V0,
+              "dissipated_power_W": abs(P * share) * (rel_F + rel_D),
+              "contact_time_s": q["Nc_over_Nc0"] * time,
+              "excursion_r_um": math.nan, "excursion_theta_um": math.nan}
+    bounds = {}
+    if "FTx_over_mu0FN" in a.bounds:
+        lo, hi = a.bounds["FTx_over_mu0FN"]
+        bounds.update(FTx_N=(lo * force, hi * force), power_W=(lo * force * V0, hi * force * V0))
+    if "FTy_over_mu0FN" in a.bounds:
+        lo, hi = a.bounds["FTy_over_mu0FN"]
+        bounds["FTy_N"] = (lo * force, hi * force)
+    return ({k: float(v) for k, v in errors.items()},
+            {k: (float(lo), float(hi)) for k, (lo, hi) in bounds.items()})

@@ -31,7 +31,8 @@ from .beta import solve_beta_secant
 from .contacts import run_contacts
 from .distribution_nodes import (EMPTY, density_grid, fold_atoms, folded, initial_edges,
                                  kronrod, nodes, quantile_nodes, repair)
-from .distribution_result import OUTCOMES, QUANTITIES, DistributionArrayResult, assemble
+from .distribution_result import (FILLED, OUTCOMES, QUANTITIES, DistributionArrayResult,
+                                  assemble, filled_columns)
 from .distributions import Distribution, Uniform, rotated
 from .friction import mu0
 from .options import SolverOptions, array_method
@@ -122,15 +123,22 @@ def _array(params, distribution, psi, self_consistent, tol, options, max_interva
             vals[busy], diag[busy] = repair(v), d
         w = np.repeat(even[:, None], len(QUANTITIES), axis=1)
         w[:, _FY] = odd
-        return np.column_stack([w * vals, diag])
+        return np.column_stack([w * vals, diag, filled_columns(w * vals, even, odd, diag)])
 
-    def atom_values(beta):
+    def atom_values(beta, filled=False):
+        """The point masses' weighted sums and diagnostics (with ``filled``, also the sums
+        of ``filled_columns``)."""
         if not atoms:
-            return np.zeros(len(QUANTITIES)), np.zeros((0, 3))
+            out = np.zeros(len(QUANTITIES)), np.zeros((0, 3))
+            return (*out, np.zeros(len(FILLED))) if filled else out
         v, d = members(np.array([t for t, _, _ in atoms]), beta)
-        w = np.repeat(np.array([e for _, e, _ in atoms])[:, None], len(QUANTITIES), axis=1)
-        w[:, _FY] = [o for _, _, o in atoms]
-        return np.sum(w * repair(v), axis=0), d
+        even, odd = np.array([e for _, e, _ in atoms]), np.array([o for _, _, o in atoms])
+        w = np.repeat(even[:, None], len(QUANTITIES), axis=1)
+        w[:, _FY] = odd
+        wv = w * repair(v)
+        if filled:
+            return np.sum(wv, axis=0), d, np.sum(filled_columns(wv, even, odd, d), axis=0)
+        return np.sum(wv, axis=0), d
 
     closest = {}  # the beta with the smallest |G| so far, for a budget that runs out
 
@@ -215,14 +223,14 @@ def _array(params, distribution, psi, self_consistent, tol, options, max_interva
         # The values at the final beta on the last partition, without refining further
         # (its nodes are mostly computed already by the beta iteration).
         quad = quadrature(edges, edges.size - 1)
-    atom_sum, atom_diag = atom_values(state["beta"])
+    atom_sum, atom_diag, atom_filled = atom_values(state["beta"], filled=True)
     if self_consistent:
         tau = atom_sum[_T] + (quad.integral[_T] if quad is not None else 0.0)
         beta_res = state["beta"] - params.L0 / tau if tau > 0 else math.nan
     return assemble(params.replace(beta=state["beta"]), distribution, psi, atom_sum, atom_diag,
                     atoms, quad, m0, counter, beta_iter, beta_res, options,
                     time.perf_counter() - start, budget if (out_of_time or beta_cut) else None,
-                    beta_cut)
+                    beta_cut, atom_filled)
 
 
 class _Unsolvable(Exception):

@@ -32,7 +32,7 @@ from .params import DEFAULTS, RANGES, Params
 from .regimes import regime_of
 
 __all__ = ["ureg", "PillarDesign", "quantity", "to_si", "BEAM_PREFACTORS", "PAPER_PREFACTORS",
-           "Scales", "F_N_MAX"]
+           "Scales", "F_N_MAX", "measure_text"]
 
 #: One registry for the package: pint's application registry, so quantities made by a
 #: caller with ``pint.Quantity`` combine with ours.
@@ -110,6 +110,29 @@ def to_si(name: str, value) -> float:
         bound = "positive" if lower == 0 else f"greater than {lower:g}"
         raise ValueError(f"{name}={value!r} must be finite and {bound} (e.g. {example!r})")
     return x
+
+
+def measure_text(value: float, unit: str, error: float | None = None, bounds=None,
+                 digits: int = 4, converged: bool = True) -> str:
+    """A physical result with an SI prefix (pint's compact form), ``digits`` significant
+    figures and its error bar: ``1.017 ± 0.002 mN``; with ``bounds`` (not converged)
+    ``1.017 mN (not converged: between 0.51 and 1.2 mN)``; not ``converged`` and without
+    either, ``1.017 mN (not converged: no error bar)``; "–" when not a number."""
+    if value is None or not math.isfinite(value):
+        return "–"
+    known = bounds is not None and all(b is not None and math.isfinite(b) for b in bounds)
+    sizes = [abs(value)] + ([abs(error)] if error is not None and math.isfinite(error) else []) \
+        + ([abs(b) for b in bounds] if known else [])
+    prefixed = ureg.Quantity(max(sizes) or 1.0, unit).to_compact().units
+    factor = ureg.Quantity(1.0, unit).to(prefixed).magnitude
+    shown = f"{prefixed:~P}"
+    text = f"{value * factor:#.{digits}g}".rstrip(".")
+    if known:
+        lo, hi = (b * factor for b in bounds)
+        return f"{text} {shown} (not converged: between {lo:.3g} and {hi:.3g} {shown})"
+    if error is not None and math.isfinite(error):
+        return f"{text} ± {abs(error * factor):.2g} {shown}"
+    return f"{text} {shown}" + ("" if converged else " (not converged: no error bar)")
 
 
 def _from_si(name: str, value: float):

@@ -38,22 +38,51 @@ def map_axis(*values) -> tuple[float, float]:
 def design_map_data(point: dict | None, cover: dict | None = None) -> tuple[dict, tuple, tuple]:
     """Sources of the design on the map, and the x (k_r) and y (k_theta) axis ranges (which
     also hold the point ``cover``: a compared design's)."""
-    empty = {"design_point": {"k_r": [], "k_theta": [], "label": []},
+    empty = {"design_point": {"k_r": [], "k_theta": [], "label": [], "note": []},
              "design_computed": {"k_r": [], "k_theta": []},
              "design_line": {"k_r": [], "k_theta": [], "V0": []}}
     extra = (cover or {}).get("point") or {}
     if point is None:
         return empty, map_axis(extra.get("k_r")), map_axis(extra.get("k_theta"))
     p, c, line = point["point"], point["computed"], point["speed_line"]
+    xr, yr = map_axis(p["k_r"], extra.get("k_r")), map_axis(p["k_theta"], extra.get("k_theta"))
     data = dict(empty)
-    data["design_point"] = {"k_r": [p["k_r"]], "k_theta": [p["k_theta"]],
-                            "label": [f"V₀ = {point['V0_m_per_s']:.3g} m/s"]}
+    # A design beyond the axes (real pillars lie at k~ ~ 1e6-1e7) is drawn at their edge,
+    # with an arrow and its values written beside it.
+    x, y = on_axis(p["k_r"], xr), on_axis(p["k_theta"], yr)
+    off = (x, y) != (p["k_r"], p["k_theta"])
+    data["design_point"] = {
+        "k_r": [x], "k_theta": [y], "label": [f"V₀ = {point['V0_m_per_s']:.3g} m/s"],
+        "note": [f"off the map {_arrow(p['k_r'], x)}{_arrow(p['k_theta'], y, True)}\n"
+                 f"k̃_r = {_e(p['k_r'])}\nk̃_θ = {_e(p['k_theta'])}" if off else ""]}
     if c is not None and c.get("scale", 1.0) < 1.0:
         data["design_computed"] = {"k_r": [c["k_r"]], "k_theta": [c["k_theta"]]}
     data["design_line"] = {"k_r": list(line["k_r"]), "k_theta": list(line["k_theta"]),
                            "V0": list(line["V0_m_per_s"])}
-    return (data, map_axis(p["k_r"], extra.get("k_r")),
-            map_axis(p["k_theta"], extra.get("k_theta")))
+    return data, xr, yr
+
+
+#: How far inside a log axis's end an off-axis point is drawn (a factor).
+EDGE = 1.6
+
+
+def on_axis(value: float, axis: tuple[float, float]) -> float:
+    """``value`` if it lies on the log ``axis``, else just inside the end it lies beyond."""
+    lo, hi = axis
+    return hi / EDGE if value > hi / EDGE else lo * EDGE if value < lo * EDGE else value
+
+
+def _e(x: float) -> str:
+    """Two figures, with a short exponent: 5.5e6."""
+    return f"{x:.2g}".replace("e+0", "e").replace("e+", "e").replace("e-0", "e-")
+
+
+def _arrow(value: float, shown: float, vertical: bool = False) -> str:
+    if value == shown:
+        return ""
+    if vertical:
+        return "↑" if value > shown else "↓"
+    return "→" if value > shown else "←"
 
 
 def design_map_figure(regime_map, point: dict | None = None, width: int = 330,
@@ -70,9 +99,12 @@ def design_map_figure(regime_map, point: dict | None = None, width: int = 330,
     fig.scatter("k_r", "k_theta", source=source("design_computed", data["design_computed"]),
                 marker="square", size=11, fill_color=GREEN, line_color=BLACK,
                 legend_label="computed (scaled)")
-    fig.scatter("k_r", "k_theta", source=source("design_point", data["design_point"]),
-                marker="star", size=20, fill_color=VERMILION, line_color=BLACK,
-                legend_label="this design")
+    star = source("design_point", data["design_point"])
+    fig.scatter("k_r", "k_theta", source=star, marker="star", size=20, fill_color=VERMILION,
+                line_color=BLACK, legend_label="this design")
+    fig.text("k_r", "k_theta", text="note", source=star, text_align="right",
+             text_baseline="top", x_offset=-4, y_offset=12, text_font_size="11px",
+             text_color=BLACK, background_fill_color="white", background_fill_alpha=0.85)
     fig.hover.renderers = [*fig.hover.renderers, line]
     fig.hover.tooltips = [*fig.hover.tooltips, ("V₀ [m/s]", "@V0{0.000e}")]
     # Too small a plot for a legend over the cells: the view's text names the marks.

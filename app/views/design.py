@@ -29,6 +29,7 @@ from ..results import SessionResults, optimum_family
 from ..state import ExplorerState, distribution_of
 from ..urlstate import DESIGN_INPUTS
 from .compare_tables import design_compare_markdown, distribution_words
+from .design_readouts import DesignReadouts
 from .design_upload import HistogramUpload
 from .layout import PHONE, grid_css
 from .widgets import caption, look
@@ -137,9 +138,8 @@ class DesignView(pn.viewable.Viewer):
         self.point_text = pn.pane.Markdown("", width=310, margin=(0, 5),
                                            styles={"font-size": "0.88em"},
                                            css_classes=["design-point"])
-        self.readouts = pn.pane.Markdown("", width=340, margin=(0, 5),
-                                         styles={"font-size": "0.88em"},
-                                         css_classes=["design-readouts"])
+        self.table = DesignReadouts(state=s, results=self.results)
+        self.readouts = self.table.table
         self.compare = pn.pane.Markdown("", width=340, margin=(0, 5), visible=False,
                                         styles={"font-size": "0.88em"},
                                         css_classes=["design-compare"])
@@ -255,12 +255,12 @@ class DesignView(pn.viewable.Viewer):
         self.angle2.disabled = not second or s.dist2_family in ("uniform", "histogram")
 
     # ------------------------------------------------------------------ readouts
-    @param.depends("results.design_array", "results.busy", "results.errors",
-                   "results.design_array_A", "state.pinned", watch=True)
+    @param.depends("results.design_array", "results.design_array_A", "state.pinned",
+                   watch=True)
     def _on_array(self) -> None:
+        """A beside B, with B − A, when a state is pinned (B's own table: ``self.table``)."""
         r = self.results
-        a, busy = r.design_array, "design_array" in r.busy
-        error = r.errors.get("design_array", "")
+        a = r.design_array
         pinned = self._a
         self.compare.visible = pinned is not None
         if pinned is not None:  # A beside B, with B − A
@@ -269,31 +269,6 @@ class DesignView(pn.viewable.Viewer):
                 r.design_array_A, a,
                 distribution_words(distribution_of(pinned), pinned["dist_psi"]),
                 distribution_words(s.distribution, s.dist_psi))
-        if a is None:
-            self.readouts.object = error or ("Computing the array …" if busy else
-                                             "The array is computed for a usable design.")
-            return
-        arr = a["array"]
-        q = arr["quadrature_error"]
-        rows = [
-            ("F_T,x/(μ₀F_N) (Eq. 10)", f"{arr['FTx_over_mu0FN']:.4f} ± {q.get('FTx_over_mu0FN', math.nan):.1e}"),
-            ("… duration-weighted", f"{arr['FTx_over_mu0FN_duration']:.4f}"),
-            ("F_T,y/(μ₀F_N)", f"{arr['FTy_over_mu0FN']:.4f} ± {q.get('FTy_over_mu0FN', math.nan):.1e}"),
-            ("D_y/D_x", f"{arr['Dy_over_Dx']:.4f}"),
-            ("N_c/N_c0, β", f"{arr['Nc_over_Nc0']:.4f}, {arr['beta']:.4f}"),
-            ("drive force F_T,x", f"{_g(a['FTx_N'])} N (F_T,y {_g(a['FTy_N'])} N)"),
-            ("power F_T,x V₀", f"{_g(a['power_W'])} W"),
-            ("contact time", f"{_g(a['contact_time_s'])} s"),
-            ("excursion r, θ (rms)", f"{_g(a['excursion_r_um'])}, "
-                                     f"{_g(a['excursion_theta_um'])} µm"),
-        ]
-        table = "| the array | |\n|:--|--:|\n" + "\n".join(f"| {k} | {v} |" for k, v in rows)
-        note = "" if a["success"] else f"\n\n**Not converged:** {a['message']}"
-        if busy:
-            note += "\n\n*Updating …*"
-        elif error:
-            note += f"\n\n{error}"
-        self.readouts.object = table + note
 
     # ------------------------------------------------------------------ the optimum
     @param.depends("results.design_optimum", "results.optimum_note", "results.busy",
@@ -349,7 +324,7 @@ class DesignView(pn.viewable.Viewer):
         right = pn.Column(
             pn.Row(self.family, self.angle, self.kappa, self.psi, margin=0),
             pn.Row(self.family2, self.angle2, self.kappa2, self.mix, margin=0), self.upload,
-            self.readouts, self.compare, pn.Row(self.objective, self.bound, margin=0),
+            self.table, self.compare, pn.Row(self.objective, self.bound, margin=0),
             pn.Row(self.optimise_button, self.cancel_button, margin=0),
             self.optimum_text, width=345)
         figures = pn.Column(self.map_pane, self.polar_pane, margin=0,

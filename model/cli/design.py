@@ -16,6 +16,7 @@ import math
 import re
 
 from ..design import FAMILIES, OBJECTIVES, OptimisationCancelled, optimise
+from ..design_table import headline, rows as design_rows
 from ..params import Params
 from .sweep import POINT_BYTES
 from ._common import (FIELD_FLAGS, UsageError, add_stiffness, beta_value, check_memory,
@@ -253,11 +254,6 @@ def _pillar_summary(r: dict) -> str:
         sections.append(("Array in physical units", [
             ("success", r["success"], r["message"]),
             ("outcome", r["array"]["outcome"], "ok, or what ran out"),
-            ("FTx_over_mu0FN", r["FTx_over_mu0FN"], "apparent friction"),
-            ("FTx_N", r["FTx_N"], "drive force [N]"), ("FTy_N", r["FTy_N"], "sideways [N]"),
-            ("power_W", r["power_W"], "F_T,x V0 [W]"),
-            ("dissipated_power_W", r["dissipated_power_W"], "(D_x + D_y)/W of it [W]"),
-            ("contact_time_s", r["contact_time_s"], "mean contact duration [s]"),
-            ("excursion_r_um", r["excursion_r_um"], "Delta r_rms r0 [um]"),
-            ("excursion_theta_um", r["excursion_theta_um"], "Delta theta_rms r0 [um]")]))
+            ("headline", "", headline(r)),
+            *((row["key"], row["text"], row["what"]) for row in design_rows(r))]))
     return table(sections)

@@ -12,6 +12,7 @@ import math
 import re
 
 from ..distribution_array import distribution_array
+from ..distribution_result import error_words
 from ..distributions import Histogram, Mixture, Pair, VonMises, from_dict, rotated
 from ..params import Params
 from ._common import FIELD_FLAGS, UsageError, jsonable, real, stiffness, table
@@ -144,10 +145,11 @@ def run(args, orientation: str) -> int:
 
 def summary(r: dict) -> str:
     """A readable report of a distribution array."""
-    p, err = r["params"], r["quadrature_error"]
+    p = r["params"]
 
     def pm(key):
-        return f" (+- {err[key]:.2g})"
+        words = error_words(r, key)
+        return f" ({words})" if words.startswith("±") else f" {words}".rstrip()
 
     params = [("orientation", r["orientation"], json.dumps(r["distribution"])),
               ("k_r", p["k_r"], "radial stiffness"),
