@@ -43,6 +43,9 @@ DESIGN_ROW_CSS = f"""
            height: auto !important; flex: 0 0 auto !important; }}
   .design-figures {{ min-width: 0 !important; max-width: calc(100vw - 8px);
                      width: calc(100vw - 8px) !important; }}
+  /* As tall as their content, so the figures below never cover an input. */
+  .design-inputs, .design-side {{ height: auto !important; flex: 0 0 auto !important;
+                                  max-width: calc(100vw - 8px); }}
 }}
 """
 
@@ -345,13 +348,14 @@ class DesignView(pn.viewable.Viewer):
     def __panel__(self):
         grid = pn.GridBox(*self.inputs.values(), ncols=3, margin=(0, 0))
         left = pn.Column(pn.pane.Markdown("**Pillar array** (values with units)",
-                                          margin=(0, 5)), grid, self.point_text, width=315)
+                                          margin=(0, 5)), grid, self.point_text, width=315,
+                         css_classes=["design-inputs"])
         right = pn.Column(
             pn.Row(self.family, self.angle, self.kappa, self.psi, margin=0),
             pn.Row(self.family2, self.angle2, self.kappa2, self.mix, margin=0), self.upload,
             self.readouts, self.compare, pn.Row(self.objective, self.bound, margin=0),
             pn.Row(self.optimise_button, self.cancel_button, margin=0),
-            self.optimum_text, width=345)
+            self.optimum_text, width=345, css_classes=["design-side"])
         figures = pn.Column(self.map_pane, self.polar_pane, margin=0,
                             sizing_mode="stretch_both", css_classes=["design-figures"],
                             stylesheets=[grid_css("minmax(0, 1fr)",
