@@ -30,7 +30,7 @@ from ..state import ExplorerState, distribution_of
 from ..urlstate import DESIGN_INPUTS
 from .compare_tables import design_compare_markdown, distribution_words
 from .design_upload import HistogramUpload
-from .layout import PHONE, grid_css
+from .layout import INPUT_CSS, PHONE, grid_css
 from .widgets import caption, look
 
 #: Inputs, figures, readouts side by side (the figures take the width left); on a phone
@@ -97,7 +97,7 @@ class DesignView(pn.viewable.Viewer):
         super().__init__(**params)
         s = self.state
         self.inputs = {name: pn.widgets.TextInput.from_param(
-            s.param[name], **caption(label), width=94, margin=(0, 3),
+            s.param[name], **caption(label), width=94, margin=(0, 3), stylesheets=[INPUT_CSS],
             css_classes=[f"ctl-{name}"]) for name, (_, _, label, _) in DESIGN_INPUTS.items()}
         self.family = pn.widgets.Select.from_param(
             s.param.dist_family, options=FAMILY_LABELS, **caption("Orientations"), width=96,

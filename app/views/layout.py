@@ -118,6 +118,10 @@ BUTTON_CSS = f"""
 """
 
 
+#: Text inputs, number inputs and menus touch-sized on a phone.
+INPUT_CSS = f"{PHONE} {{ .bk-input {{ min-height: 44px !important; }} }}"
+
+
 def grid_css(columns: str, rows: str, spans: dict | None = None, phone_height: int = 360,
              min_height: int = 480) -> str:
     """A grid of figures ``columns`` x ``rows`` (CSS track lists) as tall as the window
