@@ -1,8 +1,11 @@
 """A 45-minute lesson on the four regimes (docs/teaching.md), checked against the model.
 
 * ``STEPS``: the lesson's predict-observe-explain questions, each with the explorer state
-  it opens (URL keys of ``app.urlstate``; ``tab=array`` and ``play=1`` are the array tab
-  and autoplay);
+  it opens (URL keys of ``app.urlstate``; ``tab=array`` is the array tab);
+* ``lesson_url(step)``: the link of a step. A lesson is taught from one screen, so its
+  links keep the presentation: projector mode (``projector=1``) unless asked for a
+  screen, and never autoplay (``play=1``): the animation waits at its first frame until
+  the class has predicted and the teacher presses Play (Space);
 * ``facts(regime, theta0_deg, F_N)``: what the model does in that state -- the motion of
   the support on the Support tab (integrated, like the page, with the fixed array's
   self-consistent beta) and the fixed and uniform arrays' readouts;
@@ -13,6 +16,7 @@
 """
 from __future__ import annotations
 
+import argparse
 import math
 from dataclasses import dataclass
 from functools import lru_cache
@@ -39,14 +43,14 @@ class Step:
     theta0_deg: float
     F_N: float
     tab: str
-    play: bool = True
 
-    @property
-    def query(self) -> dict:
+    def query(self, projector: bool = True) -> dict:
+        """The URL keys of this step's state; ``projector``: in projector mode. Never
+        ``play``: the class predicts before the motion starts."""
         q = {"regime": self.regime, "theta0_deg": f"{self.theta0_deg:g}", "F_N": f"{self.F_N:g}",
              "tab": self.tab}
-        if self.play:
-            q["play"] = "1"
+        if projector:
+            q["projector"] = "1"
         return q
 
 
@@ -57,12 +61,13 @@ STEPS = (
     Step("slider-150", 3, "slider", 150, 1, "support"),
     Step("soft", 6, "soft", 90, 1, "support"),
     Step("array", 7, "slider", 90, 1, "array"),
-    Step("load", 5, "soft", 90, 10, "load", play=False),
+    Step("load", 5, "soft", 90, 10, "load"),
 )
 
 
-def lesson_url(step: Step) -> str:
-    return f"{BASE_URL}?{urlencode(step.query)}"
+def lesson_url(step: Step, projector: bool = True, base_url: str = BASE_URL) -> str:
+    """The link of ``step`` (projector mode unless ``projector`` is False; paused)."""
+    return f"{base_url}?{urlencode(step.query(projector))}"
 
 
 @lru_cache(maxsize=64)
@@ -105,9 +110,18 @@ def fact_line(step: Step) -> str:
 REGIME_TEXTS = MECHANISMS
 
 
-def main() -> int:
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(
+        prog="python -m app.lesson", description="The lesson's links (docs/teaching.md) and "
+        "the model's numbers each question quotes.")
+    parser.add_argument("--screen", action="store_true",
+                        help="links for a screen (no projector mode)")
+    parser.add_argument("--base-url", default=BASE_URL,
+                        help=f"address of the served explorer (default {BASE_URL})")
+    args = parser.parse_args(argv)
     for step in STEPS:
-        print(f"[{step.key}] {lesson_url(step)}\n  {fact_line(step)}")
+        print(f"[{step.key}] {lesson_url(step, not args.screen, args.base_url)}\n"
+              f"  {fact_line(step)}")
     return 0
 
 

@@ -31,6 +31,16 @@ def test_every_link_is_a_lesson_state_the_page_reads():
         assert values["theta0"] == step.theta0_deg
 
 
+def test_the_links_keep_the_presentation_and_wait_for_the_prediction():
+    """A lesson is taught from one screen: every link opens in projector mode and none
+    starts the animation before the class has predicted (``--screen``: no projector)."""
+    for step in STEPS:
+        values, _ = parse(parse_qs(urlsplit(lesson_url(step)).query))
+        assert values.get("projector") is True and not values.get("play"), lesson_url(step)
+        values, _ = parse(parse_qs(urlsplit(lesson_url(step, projector=False)).query))
+        assert not values.get("projector") and not values.get("play")
+
+
 def test_lesson_lasts_45_minutes_and_covers_the_regimes():
     assert sum(s.minutes for s in STEPS) + 5 == 45  # plus the 5-minute introduction
     assert {s.regime for s in STEPS} == set(REGIMES) == set(REGIME_TEXTS)

@@ -13,12 +13,17 @@ from bokeh.layouts import column
 from bokeh.models import (Arrow, BoxAnnotation, ColorBar, CustomJS, Div, Label,
                           LinearColorMapper, Range1d, Span, VeeHead)
 
+from .array_readout import last_counted, readout_text, settled_mean
 from .common import BLACK, BLUE, GREEN, GREY, ORANGE, VERMILION, new_figure, source
 
 __all__ = ["array_scene", "array_frames", "direction_palette", "slab_half_width", "view_x",
            "html_key", "ARROW_LENGTH"]
 
 ARROW_LENGTH = 0.45  # friction arrows, in r0 (direction only: every support carries f_N)
+#: Room above the slab's edge (r0) for its velocity arrow (at 0.9) and the arrow's label.
+ARROW_ROOM = 2.6
+#: Text beside the canvases: the page's size (13 px, 18 px projected, 16 px on a phone).
+TEXT_SIZE = "max(12px, var(--bokeh-font-size, 14px))"
 SLAB_FILL = "#9ecae1"
 STRIPE_SPACING = 1.5
 
@@ -71,7 +76,9 @@ def _ranges(motion, width, height_limits=(240, 620), max_half: float = 30.0):
     """Equal scales in x and y: ``view_x`` and the masses' sideways excursions."""
     x0, x1 = view_x(motion)
     y = np.abs(motion.pivot_y[:, None] + motion.y).max()
-    half = min(max((motion.n_rows - 1) / 2 * motion.spacing + 2.5, float(y) + 0.5), max_half)
+    # Room above the slab for its velocity arrow and label (ARROW_ROOM r0 over its edge).
+    half = min(max((motion.n_rows - 1) / 2 * motion.spacing + 2.5, float(y) + 0.5,
+                   slab_half_width(motion) + ARROW_ROOM), max_half)
     height = int(np.clip(width * 2 * half / (x1 - x0) + 60, *height_limits))
     half = max(half, (height - 60) / width * (x1 - x0) / 2)
     return Range1d(x0, x1), Range1d(-half, half), height
@@ -114,14 +121,17 @@ def array_scene(motion, player, width: int = 1000, panel_height: int = 220,
     stripes = source("array_stripes", _stripes(lead, L0, half_w, offsets))
     fig.segment("x0", "y0", "x1", "y1", source=stripes, line_color=BLUE, line_alpha=0.25,
                 line_width=2)
+    # The arrow's label starts at its tail (ends at its head once the slab is in the
+    # view's right half): it stays inside the view, whose edges the slab reaches.
     arrow = source("array_velocity", {"x0": [lead - 0.8 * L0], "x1": [lead - 0.2 * L0],
-                                      "xm": [lead - 0.5 * L0], "y": [half_w + 0.9]})
+                                      "xt": [lead - 0.8 * L0], "align": ["left"],
+                                      "y": [half_w + 0.9]})
     fig.add_layout(Arrow(end=VeeHead(size=14, fill_color=BLUE, line_color=BLUE),
                          x_start="x0", y_start="y", x_end="x1", y_end="y", source=arrow,
                          line_color=BLUE, line_width=4))
-    fig.text(x="xm", y="y", text={"value": "slab velocity V₀"}, source=arrow,
+    fig.text(x="xt", y="y", text={"value": "slab velocity V₀"}, source=arrow,
              text_font_size="14px", text_color=BLUE, text_baseline="bottom",
-             text_align="center", y_offset=-5)
+             text_align={"field": "align"}, y_offset=-5, name="array_velocity_label")
 
     # Supports: pivot, spring line, mass coloured by the friction direction, its arrow.
     now = source("array_supports", _supports_now(motion, 0))
@@ -133,15 +143,16 @@ def array_scene(motion, player, width: int = 1000, panel_height: int = 220,
                 line_color={"field": "a", "transform": mapper})
     fig.scatter("mx", "my", source=now, size=9, line_color=BLACK, line_width=0.8,
                 fill_color={"field": "a", "transform": mapper})
-    colorbar = _colorbar_figure(mapper, 340 if responsive else width)
+    colorbar = _colorbar_figure(mapper, 340 if responsive else width, responsive)
 
     panel = _panel(motion, width, panel_height)
-    readout = Div(text=_readout(motion, 0), name="array_readout", width=width, height=48,
-                  styles={"font-size": "16px"})
+    readout = Div(text=_readout(motion, 0), name="array_readout", width=width, height=52,
+                  styles={"font-size": TEXT_SIZE, "min-height": "2.6em"})
     frames = source("array_frames", array_frames(motion))
     series = source("array_series", {"t": motion.t, **_shown_ratios(motion),
                                      "N_c": motion.N_c.astype(float),
-                                     "N_c0": motion.N_c0.astype(float)})
+                                     "N_c0": motion.N_c0.astype(float),
+                                     "last": last_counted(motion).astype(float)})
     live = source("array_live", _live(motion, 0))
     panel.line("t", "nc", source=live, line_color=BLUE, line_width=3)
     panel.line("t", "ftx", source=live, line_color=VERMILION, line_alpha=0.45, line_width=1.2)
@@ -153,13 +164,13 @@ def array_scene(motion, player, width: int = 1000, panel_height: int = 220,
     panel_key = Div(text=html_key([
         ("line", BLUE, "solid", 3, "N_c/N_c0 live"),
         ("line", BLUE, "dashed", 2, f"array model ⟨τ_out⟩/L₀ = {m['Nc_over_Nc0']:.3f}"),
-        ("line", VERMILION, "solid", 1, "F_T,x/(μ₀F_N) now"),
-        ("line", VERMILION, "solid", 3, "F_T,x/(μ₀F_N) running mean"),
+        ("line", VERMILION, "solid", 1, "F_T,x/(μ₀F_N) instantaneous"),
+        ("line", VERMILION, "solid", 3, "F_T,x/(μ₀F_N) mean over the steady window"),
         ("line", VERMILION, "dashed", 2,
          f"array model, steady force = {m['FTx_over_mu0FN_duration']:.3f}"),
         ("line", GREY, "dotted", 2, "rigid supports = 1"),
         ("box", GREEN, "solid", 0, "steady window")]), width=width, name="array_panel_key",
-        styles={"font-size": "14px"})
+        styles={"font-size": TEXT_SIZE})
 
     player.on_frame(CustomJS(args=dict(
         frames=frames, now=now, slab=slab, stripes=stripes, arrow=arrow, series=series,
@@ -169,7 +180,8 @@ def array_scene(motion, player, width: int = 1000, panel_height: int = 220,
         top=fig, full_x=[xr.start, xr.end], follow=bool(responsive),
         arrow_len=ARROW_LENGTH, beta=motion.params.beta,
         model_nc=float(motion.model["Nc_over_Nc0"]),
-        model_ftx=float(motion.model["FTx_over_mu0FN_duration"])), code=_FRAME_JS))
+        model_ftx=float(motion.model["FTx_over_mu0FN_duration"]),
+        steady=list(motion.steady)), code=_FRAME_JS))
     key = Div(text=html_key([
         ("box", SLAB_FILL, "solid", 0, "slab (length L₀, moving →)"),
         ("line", BLUE, "solid", 4, "slab velocity V₀"),
@@ -179,8 +191,8 @@ def array_scene(motion, player, width: int = 1000, panel_height: int = 220,
                     "(arrow): <b>dark</b> along the sliding direction, <b style='color:#0072B2'>"
                     "blue</b> turned towards +y, <b style='color:#C47F00'>orange</b> towards −y, "
                     "<b style='color:#999'>grey</b> not in contact. Released supports are drawn "
-                    "at rest."), width=width, name="array_key", styles={"font-size": "14px"})
-    parts = [fig, colorbar, key, readout, panel, panel_key]
+                    "at rest."), width=width, name="array_key", styles={"font-size": TEXT_SIZE})
+    parts = [readout, fig, colorbar, key, panel, panel_key]
     if responsive:
         # Widths follow the page, heights stay: on a narrow screen the top view keeps
         # equal scales by following the slab (see _FRAME_JS), the panel just narrows.
@@ -222,11 +234,12 @@ def _ratio(a, b):
 def _shown_ratios(motion) -> dict:
     """N_c/N_c0 and F_T,x as drawn: up to the last support's entry. After it the slab
     leaves the grid (N_c0 falls to 0 while dragged supports are still in contact), and
-    the ratios say nothing about a sliding slab."""
+    the ratios say nothing about a sliding slab. The mean over the steady window ("run")
+    is held at its settled value once the window has closed."""
     keep = motion.t <= motion.t_start.max()
     return {k: np.where(keep, v, np.nan) for k, v in (
         ("nc", _ratio(motion.N_c, motion.N_c0)), ("ftx", motion.FTx),
-        ("run", motion.FTx_running))}
+        ("run", settled_mean(motion)))}
 
 
 def _live(motion, f):
@@ -284,7 +297,7 @@ def html_key(items) -> str:
     return " ".join(parts)
 
 
-def _colorbar_figure(mapper, width):
+def _colorbar_figure(mapper, width, responsive: bool = False):
     """The colour scale in a figure of its own, which stays still during playback."""
     from bokeh.plotting import figure
 
@@ -294,7 +307,8 @@ def _colorbar_figure(mapper, width):
     fig.scatter([0], [0], visible=False)  # a figure needs a renderer
     fig.grid.visible = False
     fig.add_layout(ColorBar(color_mapper=mapper, orientation="horizontal", height=14,
-                            width=min(420, width - 40), title="friction direction [° from +x]",
+                            width="auto" if responsive else min(420, width - 40),
+                            title="friction direction [° from +x]",
                             location="top_left",
                             title_text_font_size="13px", major_label_text_font_size="13px",
                             name="array_colorbar", ticker=_ticker(), padding=4), "above")
@@ -302,19 +316,9 @@ def _colorbar_figure(mapper, width):
 
 
 def _readout(motion, f) -> str:
-    nc, nc0 = int(motion.N_c[f]), int(motion.N_c0[f])
-    ftx = motion.FTx[f]
-    return _readout_text(motion.t[f], nc, nc0, ftx, motion.FTx_running[f])
-
-
-def _readout_text(t, nc, nc0, ftx, run) -> str:
-    ratio = f"{nc / nc0:.2f}" if nc0 else "–"
-    beta = f"{nc0 / nc:.2f}" if nc else "–"
-    force = f"{ftx:.3f}" if np.isfinite(ftx) else "–"
-    running = f"{run:.3f}" if np.isfinite(run) else "–"
-    return (f"τ = {t:.1f} · <b>N_c = {nc}</b> supports in contact, N_c0 = {nc0} under a rigid "
-            f"slab: N_c/N_c0 = {ratio}, β = N_c0/N_c = {beta} · F_T,x/(μ₀F_N) = {force} "
-            f"(running mean {running})")
+    series = {"t": motion.t, **_shown_ratios(motion), "N_c": motion.N_c, "N_c0": motion.N_c0,
+              "last": last_counted(motion)}
+    return readout_text(series, f, motion.steady)
 
 
 _FRAME_JS = """
@@ -348,7 +352,9 @@ for (const o of offsets) {
   x1.push(a0 + t1 * (a1 - a0)); y1.push(-half_w + t1 * 2 * half_w);
 }
 stripes.setv({data: {x0, y0, x1, y1}}, {sync: false});
-arrow.setv({data: {x0: [lead - 0.8 * L0], x1: [lead - 0.2 * L0], xm: [lead - 0.5 * L0], y: [arrow.data.y[0]]}}, {sync: false});
+const right = lead - 0.5 * L0 > (top.x_range.start + top.x_range.end) / 2;
+arrow.setv({data: {x0: [lead - 0.8 * L0], x1: [lead - 0.2 * L0], xt: [lead - (right ? 0.2 : 0.8) * L0],
+                   align: [right ? "right" : "left"], y: [arrow.data.y[0]]}}, {sync: false});
 const s = series.data, k = f + 1;
 // The live panel is a second canvas: redrawn at most every panel_ms (and when it settles),
 // so the top view gets the frame budget.
@@ -362,11 +368,17 @@ if (!(pnow - (live.__t || 0) < panel_ms)) { live.__t = pnow; panel(); }
 else live.__later = setTimeout(panel, panel_ms);
 // The readout is DOM (layout work): at most every ui_ms, and once more when it settles.
 const write = () => {
-const nc = s.N_c[f], nc0 = s.N_c0[f], ftx = s.ftx[f], run = s.run[f];
+// As readout_text in Python: after the slab has left the grid, the last counted frame g.
+const g = s.last[f], nc = s.N_c[g], nc0 = s.N_c0[g], ftx = s.ftx[g], run = s.run[g];
 const fmt = (v, p) => Number.isFinite(v) ? v.toFixed(p) : "–";
-readout.setv({text: `τ = ${t.toFixed(1)} · <b>N_c = ${nc}</b> supports in contact, N_c0 = ${nc0} under a rigid slab: ` +
+const mean = Number.isFinite(run)
+  ? `<b>mean over the steady window: ${fmt(run, 3)}</b>` + (t > steady[1] ? " (settled)" : " (so far)")
+  : `mean over the steady window: from τ = ${steady[0].toFixed(1)}`;
+const now = g === f ? `N_c = ${s.N_c[f]}</b> supports in contact`
+  : `N_c = ${s.N_c[f]}</b> still in contact; the slab has left the grid, last values (τ = ${s.t[g].toFixed(1)}): N_c = ${nc}`;
+readout.setv({text: `τ = ${t.toFixed(1)} · <b>${now}, N_c0 = ${nc0} under a rigid slab: ` +
   `N_c/N_c0 = ${nc0 ? fmt(nc / nc0, 2) : "–"}, β = N_c0/N_c = ${nc ? fmt(nc0 / nc, 2) : "–"} · ` +
-  `F_T,x/(μ₀F_N) = ${fmt(ftx, 3)} (running mean ${fmt(run, 3)})`}, {sync: false});
+  `F_T,x/(μ₀F_N) instantaneous ${fmt(ftx, 3)}, ${mean}`}, {sync: false});
 };
 const nowms = performance.now();
 clearTimeout(readout.__later);

@@ -7,8 +7,8 @@ axes are kept and nothing flickers) and browser tests can find them in
 """
 from __future__ import annotations
 
-from bokeh.models import (ColorBar, ColumnDataSource, GlyphRenderer, Label, Legend, Text,
-                          Title)
+from bokeh.models import (ColorBar, ColumnDataSource, GlyphRenderer, Label, LabelSet, Legend,
+                          Text, Title)
 from bokeh.plotting import figure
 
 #: Okabe-Ito colours: distinguishable with colour-blindness and on a projector.
@@ -18,6 +18,10 @@ REGIME_COLORS = {"pendulum": BLUE, "slider": VERMILION, "stiff": GREEN, "soft": 
 
 TOOLS = "pan,wheel_zoom,box_zoom,reset,save"
 LINE = 2.0
+#: Smallest text on a figure (px, screen mode): readable on a phone as on a laptop.
+MIN_TEXT_PX = 12
+#: Text sizes in projector mode: this many times the screen's.
+PROJECTOR_SCALE = 1.5
 
 
 def new_figure(name: str, title: str, width: int, height: int, tools: str = TOOLS, **kwargs):
@@ -26,7 +30,7 @@ def new_figure(name: str, title: str, width: int, height: int, tools: str = TOOL
                  toolbar_location="right", **kwargs)
     fig.toolbar.logo = None
     fig.toolbar.autohide = True
-    fig.title.text_font_size = "12px"
+    fig.title.text_font_size = f"{MIN_TEXT_PX + 1}px"
     style(fig, False)
     return fig
 
@@ -102,9 +106,9 @@ TICKS = {False: 6, True: 4}
 def style(fig, projector: bool) -> None:
     """Screen (False) or projector (True) look: font sizes, line widths, grid contrast,
     tick density, legends and colour bars."""
-    scale = 1.5 if projector else 1.0
-    label, tick = f"{round(12 * scale)}px", f"{round(11 * scale)}px"
-    title = "18px" if projector else "12px"
+    scale = PROJECTOR_SCALE if projector else 1.0
+    label = tick = f"{round(MIN_TEXT_PX * scale)}px"
+    title = f"{round((MIN_TEXT_PX + 1) * scale)}px"
     for axis in (*fig.xaxis, *fig.yaxis):
         if hasattr(axis.ticker, "desired_num_ticks"):
             axis.ticker.desired_num_ticks = TICKS[projector]
@@ -128,7 +132,7 @@ def style(fig, projector: bool) -> None:
             renderer.glyph.line_width = base * (2.0 if projector else 1.0)
         if isinstance(renderer.glyph, Text):
             _scale_text(renderer.glyph, scale)
-    for text in (m for m in layouts if isinstance(m, Label)):
+    for text in (m for m in layouts if isinstance(m, (Label, LabelSet))):
         _scale_text(text, scale)
     for bar in (m for m in layouts if isinstance(m, ColorBar)):
         bar.major_label_text_font_size = tick
@@ -141,7 +145,7 @@ def legend_below(fig, spacing: int = 6) -> None:
     """The legend in one row under the plot, where it hides no curve or glyph."""
     legend = fig.legend[0]
     legend.orientation = "horizontal"
-    legend.label_text_font_size = "10px"
+    legend.label_text_font_size = f"{MIN_TEXT_PX}px"
     legend.background_fill_alpha = 0.6
     legend.click_policy = "hide"
     legend.padding = 1

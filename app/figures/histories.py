@@ -76,7 +76,7 @@ def forces_figure(series, params=None, frame: int = 0, width: int = 340, height:
                         dimension="height", line_color=GREY, line_width=1.5,
                         name="forces_time"))
     fig.add_layout(Label(x=48, y=m0, x_units="screen", text=f"μ₀ = {m0:.4f}",
-                         name="forces_mu0_label", text_color=GREEN, text_font_size="11px",
+                         name="forces_mu0_label", text_color=GREEN, text_font_size="12px",
                          y_offset=2))
     legend_below(fig)
     return fig

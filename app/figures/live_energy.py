@@ -252,8 +252,12 @@ if (arrows) {
   quiet(arrows, {data: {x0: keep.map((a) => a[0]), y0: keep.map((a) => a[1]),
                         x1: keep.map((a) => a[2]), y1: keep.map((a) => a[3]),
                         color: keep.map((a) => a[4])}});
-  quiet(arrow_labels, {data: {x: keep.map((a) => a[2]), y: keep.map((a) => a[3]),
-                              text: keep.map((a) => a[5]), color: keep.map((a) => a[4])}});
+  // Labels inside the view, as app.figures.scene._arrow_labels places them.
+  const lx = keep.map((a) => Math.min(Math.max(a[2], vx0), vx1));
+  const ly = keep.map((a) => Math.min(Math.max(a[3], vy0), vy1));
+  quiet(arrow_labels, {data: {x: lx, y: ly, text: keep.map((a) => a[5]), color: keep.map((a) => a[4]),
+                              align: lx.map((v) => v > (vx0 + vx1) / 2 ? "right" : "left"),
+                              baseline: ly.map((v) => v > vy0 + 0.8 * (vy1 - vy0) ? "top" : "bottom")}});
 }
 quiet(forces_now, {data: {tau: [tau, tau, tau], F: [d.F_x[i], d.F_y[i], d.F_abs[i]]}});
 quiet(friction_now, {data: {v: [d.v_R[i]], mu: [d.mu[i]]}});

@@ -121,6 +121,23 @@ if (!window.__mpf_keys) {
 window.__mpf_active = frame.id;
 """
 
+#: The frame slider's handle: touch-sized (at least 30 px, the page's ``--mp-handle`` when
+#: larger: 44 px on a phone) and kept inside the slider's box at both ends.
+HANDLE_CSS = """
+.noUi-horizontal .noUi-handle {
+  width: max(30px, var(--mp-handle, 30px)) !important;
+  height: max(30px, var(--mp-handle, 30px)) !important;
+  right: calc(max(30px, var(--mp-handle, 30px)) / -2) !important;
+  top: calc((var(--mp-track, 8px) - max(30px, var(--mp-handle, 30px))) / 2 - 1px) !important;
+}
+.noUi-target {
+  width: calc(100% - max(30px, var(--mp-handle, 30px))) !important;
+  margin-left: calc(max(30px, var(--mp-handle, 30px)) / 2) !important;
+}
+"""
+#: The speed menu as tall as the page's buttons (44 px on a phone and in projector mode).
+SELECT_CSS = "select { min-height: var(--mp-button, 31px) !important; }"
+
 #: Longest interval between updates of the slider and readout while playing [ms].
 UI_MS = 120
 #: Milliseconds after a served page is up before the player says it is ready (``ready_soon``).
@@ -220,7 +237,7 @@ def browser_player(n_frames: int, times=None, fps: float = 30.0, autoplay: bool 
     speed = Select(title="speed", value="1", width=90, name=f"{name}_speed",
                    options=[(f"{s:g}", f"{s:g}×") for s in SPEEDS],
                    html_attributes={"title": "Playback speed (↑ faster, ↓ slower)"},
-                   styles={"font-size": "15px"})
+                   styles={"font-size": "15px"}, stylesheets=[SELECT_CSS])
     loop_t = Toggle(label="⟳ Loop", active=loop, width=96, name=f"{name}_loop",
                     html_attributes={"title": "Start again at the end (L)"}, **big)
     # The frames' times live in a data source, so a new trajectory can relabel them.
@@ -228,7 +245,9 @@ def browser_player(n_frames: int, times=None, fps: float = 30.0, autoplay: bool 
     readout = Div(text=_readout(0, n_frames, times[0], time_label), width=210,
                   name=f"{name}_readout", styles={"font-size": "15px"})
     shortcuts = Div(text="Keys: " + " · ".join(f"<b>{k}</b> {v}" for k, v in SHORTCUTS),
-                    name=f"{name}_keys", styles={"font-size": "13px", "color": "#444"})
+                    name=f"{name}_keys", styles={"font-size": "13px", "color": "#444",
+                                                 # hidden where the page says so (projector)
+                                                 "display": "var(--mp-keys, block)"})
     args = dict(frame=frame, slider=slider, readout=readout, play=play, speed=speed,
                 loop=loop_t, fps=float(fps), n=int(n_frames), timeline=timeline,
                 label=time_label, ui_ms=float(ui_ms))
@@ -251,9 +270,7 @@ def browser_player(n_frames: int, times=None, fps: float = 30.0, autoplay: bool 
         slider.sizing_mode = "stretch_width"
         slider.width = None
         slider.min_width = 160
-        # A touch-sized handle (phones, projectors).
-        slider.stylesheets = [".noUi-handle { width: 30px !important; height: 30px !important; "
-                              "right: -15px !important; top: -12px !important; }"]
+        slider.stylesheets = [HANDLE_CSS]  # touch-sized (phones, projectors)
         layout = column(row(play, back, forward, first, speed, loop_t, slider, readout, **wrap),
                         shortcuts, name=f"{name}_layout", sizing_mode="stretch_width")
     else:

@@ -153,10 +153,10 @@ def polar_figure(key: str, theta0=(), values=(), current=None, width: int = 310,
                            line_alpha=0.6, line_width="width")
     fig.multi_line("xs", "ys", source=src[f"polar_{key}_spokes"], line_color=GREY,
                    line_alpha=0.4, line_width=1)
-    fig.text("x", "y", "text", source=src[f"polar_{key}_ring_labels"], text_font_size="10px",
+    fig.text("x", "y", "text", source=src[f"polar_{key}_ring_labels"], text_font_size="12px",
              text_color="#444444", text_align="center", text_baseline="middle")
     fig.text("x", "y", "text", source=src[f"polar_{key}_angle_labels"],
-                      text_font_size="10px", text_color="#444444", text_align="center",
+                      text_font_size="12px", text_color="#444444", text_align="center",
                       text_baseline="middle")
     fig.line("x", "y", source=src[f"polar_{key}_spoke"], line_color=VERMILION, line_width=1.5,
              line_dash="dashed")

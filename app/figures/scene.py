@@ -111,7 +111,8 @@ _EMPTY_FRAME = {
     "scene_stripes": {"xs": [], "ys": []},
     "scene_edges": {"x": [], "y": [], "text": [], "align": []},
     "scene_arrows": {"x0": [], "y0": [], "x1": [], "y1": [], "color": []},
-    "scene_arrow_labels": {"x": [], "y": [], "text": [], "color": []},
+    "scene_arrow_labels": {"x": [], "y": [], "text": [], "color": [], "align": [],
+                           "baseline": []},
 }
 
 
@@ -189,9 +190,25 @@ def _arrows(series, i, vx0, vx1, vy0, vy1) -> dict:
         "scene_arrows": {"x0": [a[0][0] for a in keep], "y0": [a[0][1] for a in keep],
                          "x1": [a[1][0] for a in keep], "y1": [a[1][1] for a in keep],
                          "color": [a[2] for a in keep]},
-        "scene_arrow_labels": {"x": [a[1][0] for a in keep], "y": [a[1][1] for a in keep],
-                               "text": [a[3] for a in keep], "color": [a[2] for a in keep]},
+        "scene_arrow_labels": _arrow_labels(keep, vx0, vx1, vy0, vy1),
     }
+
+
+def _arrow_labels(arrows, vx0, vx1, vy0, vy1) -> dict:
+    """Each arrow's label at its tip, inside the view: a tip in the right half has its
+    label ending there (left half: starting there), a tip in the top fifth its label
+    below it (else above); a tip outside the view is labelled at the view's border.
+    (The page draws the frames with the same rule: ``app.figures.live_energy``.)"""
+    out = {"x": [], "y": [], "text": [], "color": [], "align": [], "baseline": []}
+    for _, (x, y), color, text in arrows:
+        x, y = min(max(x, vx0), vx1), min(max(y, vy0), vy1)
+        out["x"].append(x)
+        out["y"].append(y)
+        out["text"].append(text)
+        out["color"].append(color)
+        out["align"].append("right" if x > (vx0 + vx1) / 2 else "left")
+        out["baseline"].append("top" if y > vy0 + 0.8 * (vy1 - vy0) else "bottom")
+    return out
 
 
 def time_text(series, i: int) -> str:
@@ -238,16 +255,17 @@ def scene_figure(series, params, frame: int = 0, width: int = 340, height: int =
                          line_color={"field": "color"}, line_width=2.5,
                          source=src["scene_arrows"], name="scene_arrows"))
     fig.add_layout(LabelSet(x="x", y="y", text="text", text_color={"field": "color"},
-                            source=src["scene_arrow_labels"], text_font_size="11px",
-                            x_offset=3, y_offset=3, name="scene_arrow_labels"))
+                            text_align={"field": "align"}, text_baseline={"field": "baseline"},
+                            source=src["scene_arrow_labels"], text_font_size="12px",
+                            name="scene_arrow_labels"))
     fig.add_layout(LabelSet(x="x", y="y", text="text", text_align={"field": "align"},
-                            source=src["scene_edges"], text_font_size="10px",
+                            source=src["scene_edges"], text_font_size="12px",
                             text_color=BLUE, name="scene_edges"))
     fig.add_layout(LabelSet(x=6, y=24, x_units="screen", y_units="screen", text="text",
-                            source=src["scene_notes"], text_font_size="10px",
+                            source=src["scene_notes"], text_font_size="12px",
                             text_color=VERMILION, name="scene_notes"))
     fig.add_layout(ColorBar(color_mapper=mapper, width=8, title="τ/τ_out",
-                            title_text_font_size="10px", major_label_text_font_size="10px",
+                            title_text_font_size="12px", major_label_text_font_size="12px",
                             name="scene_colorbar"), "right")
     fig.add_layout(Label(x=6, y=6, x_units="screen", y_units="screen", name="scene_time",
                          text=time_text(series, frame), text_font_size="12px",

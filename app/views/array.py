@@ -13,12 +13,32 @@ from __future__ import annotations
 import panel as pn
 import param
 from bokeh.layouts import column
+from bokeh.models import Plot
 
+from .. import figures as F
 from ..figures.array_scene import array_scene
 from ..figures.player import browser_player
 from ..results import SessionResults
 from ..state import ExplorerState
 from .export import AnimationExport
+
+
+#: The tab's figures restyled in projector mode.
+FIGURES = ("array_top", "array_live_panel", "array_colorbar_figure")
+
+
+def result_text(motion, orientation: str) -> str:
+    """The tab's result in words: the steady force on a sliding slab (the array model's
+    duration-weighted average, the dashed line the live mean settles to), then the grid."""
+    m = motion.model
+    return (f"**Result: F_T,x/(μ₀F_N) = {m['FTx_over_mu0FN_duration']:.3f}**, the force "
+            f"on the sliding slab once it has settled (the supports' friction averaged "
+            f"over their time in contact), with N_c/N_c0 = {m['Nc_over_Nc0']:.3g} supports "
+            f"in contact per rigid one. Below: {motion.n_supports} supports on a "
+            f"{motion.n_rows} × {motion.n_cols} grid, θ₀ "
+            f"{'uniform' if orientation == 'uniform' else 'fixed'}; the live values move "
+            f"as supports enter and leave, their mean settles on the dashed lines."
+            + ("" if motion.success else f" ⚠ {motion.message}"))
 
 
 class ArrayView(pn.viewable.Viewer):
@@ -37,8 +57,8 @@ class ArrayView(pn.viewable.Viewer):
                      "every support at θ₀ (slider)": "fixed"}, description=None,
             margin=(4, 10), styles={"max-width": "calc(100vw - 20px)"},
             stylesheets=[".bk-btn { white-space: normal; }"])
-        self.status = pn.pane.Markdown("", css_classes=["array-status"],
-                                       styles={"font-size": "0.92em"}, margin=(0, 10))
+        self.status = pn.pane.Markdown("", css_classes=["array-status"], margin=(0, 10),
+                                       sizing_mode="stretch_width")
         self.pane = pn.pane.Bokeh(None, css_classes=["array-view"], margin=(0, 5),
                                   sizing_mode="stretch_width")
         self.export = AnimationExport(state=self.state, results=self.results, what="array")
@@ -60,13 +80,19 @@ class ArrayView(pn.viewable.Viewer):
             # (a result that came before), or once the new models are in a loaded page.
             player, doc = self.player, self._doc
             pn.state.onload(lambda: player.ready_soon(doc))
-        m = motion.model
-        self.status.object = (
-            f"{motion.n_supports} supports on a {motion.n_rows} × {motion.n_cols} grid, "
-            f"θ₀ {'uniform' if self.state.orientation == 'uniform' else 'fixed'}; "
-            f"array model: N_c/N_c0 = {m['Nc_over_Nc0']:.3g}, "
-            f"F_T,x/(μ₀F_N) = {m['FTx_over_mu0FN_duration']:.3g} (dashed lines)."
-            + ("" if motion.success else f" ⚠ {motion.message}"))
+        self._restyle()
+        self.status.object = result_text(motion, self.state.orientation)
+
+    @param.depends("state.projector", watch=True)
+    def _restyle(self) -> None:
+        """Projector mode: the figures' titles, ticks and labels projector-sized."""
+        for fig in self._figures():
+            F.style(fig, self.state.projector)
+
+    def _figures(self) -> list:
+        page = self.pane.object
+        return [] if page is None else [m for m in page.select({"type": Plot})
+                                        if m.name in FIGURES]
 
     @param.depends("results.busy", "results.errors", watch=True)
     def _on_busy(self) -> None:

@@ -17,7 +17,7 @@ from ..figures.pinned import add_pinned, load_curve_A, show_pinned
 from ..results import SessionResults
 from ..state import ExplorerState
 from ..worker import LOAD_F_N, UNIFORM_TOL
-from .layout import grid_css
+from .layout import BUTTON_CSS, grid_css
 
 #: One figure beside a column of text (narrower in projector mode): the figure takes what
 #: the window leaves.
@@ -44,6 +44,7 @@ class RegimeMapView(pn.viewable.Viewer):
         self.figure.on_event(Tap, self._on_tap)
         self.toggle = pn.widgets.RadioButtonGroup.from_param(
             state.param.map_quantity, css_classes=["ctl-map_quantity"],
+            stylesheets=[BUTTON_CSS],
             options={"5a: friction F_T,x/(μ₀F_N)": "5a", "5b: D_y/D_x": "5b"}, orientation="vertical",
             sizing_mode="stretch_width", description=None)
         F.style(self.figure, state.projector)

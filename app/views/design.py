@@ -31,7 +31,7 @@ from ..urlstate import DESIGN_INPUTS
 from .compare_tables import design_compare_markdown, distribution_words
 from .design_readouts import DesignReadouts
 from .design_upload import HistogramUpload
-from .layout import PHONE, grid_css
+from .layout import INPUT_CSS, PHONE, grid_css
 from .widgets import caption, look
 
 #: Inputs, figures, readouts side by side (the figures take the width left); on a phone
@@ -44,6 +44,9 @@ DESIGN_ROW_CSS = f"""
            height: auto !important; flex: 0 0 auto !important; }}
   .design-figures {{ min-width: 0 !important; max-width: calc(100vw - 8px);
                      width: calc(100vw - 8px) !important; }}
+  /* As tall as their content, so the figures below never cover an input. */
+  .design-inputs, .design-side {{ height: auto !important; flex: 0 0 auto !important;
+                                  max-width: calc(100vw - 8px); }}
 }}
 """
 
@@ -95,7 +98,7 @@ class DesignView(pn.viewable.Viewer):
         super().__init__(**params)
         s = self.state
         self.inputs = {name: pn.widgets.TextInput.from_param(
-            s.param[name], **caption(label), width=94, margin=(0, 3),
+            s.param[name], **caption(label), width=94, margin=(0, 3), stylesheets=[INPUT_CSS],
             css_classes=[f"ctl-{name}"]) for name, (_, _, label, _) in DESIGN_INPUTS.items()}
         self.family = pn.widgets.Select.from_param(
             s.param.dist_family, options=FAMILY_LABELS, **caption("Orientations"), width=96,
@@ -320,13 +323,14 @@ class DesignView(pn.viewable.Viewer):
     def __panel__(self):
         grid = pn.GridBox(*self.inputs.values(), ncols=3, margin=(0, 0))
         left = pn.Column(pn.pane.Markdown("**Pillar array** (values with units)",
-                                          margin=(0, 5)), grid, self.point_text, width=315)
+                                          margin=(0, 5)), grid, self.point_text, width=315,
+                         css_classes=["design-inputs"])
         right = pn.Column(
             pn.Row(self.family, self.angle, self.kappa, self.psi, margin=0),
             pn.Row(self.family2, self.angle2, self.kappa2, self.mix, margin=0), self.upload,
             self.table, self.compare, pn.Row(self.objective, self.bound, margin=0),
             pn.Row(self.optimise_button, self.cancel_button, margin=0),
-            self.optimum_text, width=345)
+            self.optimum_text, width=345, css_classes=["design-side"])
         figures = pn.Column(self.map_pane, self.polar_pane, margin=0,
                             sizing_mode="stretch_both", css_classes=["design-figures"],
                             stylesheets=[grid_css("minmax(0, 1fr)",

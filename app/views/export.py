@@ -10,6 +10,7 @@ import param
 
 from ..results import SessionResults
 from ..state import ExplorerState
+from .layout import BUTTON_CSS
 from .widgets import caption, look
 
 
@@ -24,16 +25,19 @@ class AnimationExport(pn.viewable.Viewer):
         super().__init__(**params)
         self.format = pn.widgets.RadioButtonGroup(options={"GIF": "gif", "MP4": "mp4"},
                                                   value="gif", margin=(4, 5),
+                                                  stylesheets=[BUTTON_CSS],
                                                   css_classes=[f"export-{self.what}-format"])
         self.make = pn.widgets.Button(**caption("Make animation for slides"),
                                       **look("primary", "outline"), margin=(4, 5),
+                                      stylesheets=[BUTTON_CSS],
                                       css_classes=[f"export-{self.what}-make"],
                                       description="renders the animation on the server "
                                                   "(about half a minute)")
         self.make.on_click(self._make)
         self.download = pn.widgets.FileDownload(
             callback=self._file, filename="animation.gif", label="Download", disabled=True,
-            **look("success"), margin=(4, 5), css_classes=[f"export-{self.what}-download"])
+            **look("success"), margin=(4, 5), css_classes=[f"export-{self.what}-download"],
+            stylesheets=[BUTTON_CSS])
         self.status = pn.pane.Markdown("", margin=(0, 5), styles={"font-size": "0.85em"})
 
     def _make(self, _event=None) -> None:

@@ -25,8 +25,9 @@ ROOT_SCREEN = {"--bokeh-font-size": "13px", "font-size": "13px", "color": "#1819
 ROOT_PROJECTOR = {"--bokeh-font-size": "18px", "font-size": "18px", "color": "#000000",
                   "--mp-top": "98px", "--mp-handle": "30px", "--mp-track": "12px",
                   "--mp-button": "44px", "--mp-side-direction": "column",
-                  "--mp-side-width": "calc(100% - 8px)", "--mp-card-header": "flex",
-                  "--mp-text-width": "250px", "--mp-wrap": "1"}
+                  "--mp-side-width": "calc(100% - 8px)", "--mp-side-wide": "400px",
+                  "--mp-card-header": "flex", "--mp-text-width": "clamp(250px, 22vw, 420px)",
+                  "--mp-wrap": "1", "--mp-keys": "none"}
 
 #: On a phone a container may be narrower than its children's desktop sizes (Bokeh sets
 #: ``min-width`` from them), so the page never scrolls sideways.
@@ -44,7 +45,7 @@ ROOT_CSS = f"""
   :host {{ max-width: 100vw !important; min-width: 0 !important; box-sizing: border-box;
            height: auto !important;
            --bokeh-font-size: 16px !important; font-size: 16px !important;
-           --mp-handle: 34px !important; --mp-track: 12px !important;
+           --mp-handle: 44px !important; --mp-track: 12px !important;
            --mp-button: 44px !important; }}
 }}
 """
@@ -117,6 +118,10 @@ BUTTON_CSS = f"""
 """
 
 
+#: Text inputs, number inputs and menus touch-sized on a phone.
+INPUT_CSS = f"{PHONE} {{ .bk-input {{ min-height: 44px !important; }} }}"
+
+
 def grid_css(columns: str, rows: str, spans: dict | None = None, phone_height: int = 360,
              min_height: int = 480) -> str:
     """A grid of figures ``columns`` x ``rows`` (CSS track lists) as tall as the window
@@ -149,12 +154,18 @@ def grid_css(columns: str, rows: str, spans: dict | None = None, phone_height: i
 """
 
 
-#: Beside a grid: a fixed-width column (the readouts) that moves below the plots on
-#: phones and in projector mode (there the figures take the screen; the headline above
-#: them says the result, the mechanism and the numbers are a scroll away).
+#: Beside a grid: a fixed-width column (the readouts: why the force drops) beside the
+#: plots. Projected on a screen narrower than ``SIDE_WIDE_PX`` it moves below the plots
+#: (the figures take the screen; the headline above them says the result); on a wider
+#: one it stays in view beside them, wider (``--mp-side-wide``). On phones: below.
+SIDE_WIDE_PX = 1600
 SIDE_ROW_CSS = f"""
 :host {{ width: 100% !important; flex-direction: var(--mp-side-direction, row) !important; }}
 .side-column {{ width: var(--mp-side-width, 300px) !important; }}
+@media (min-width: {SIDE_WIDE_PX}px) {{
+  :host {{ flex-direction: row !important; }}
+  .side-column {{ width: var(--mp-side-wide, 300px) !important; flex: 0 0 auto !important; }}
+}}
 {PHONE} {{
   :host {{ flex-direction: column !important; min-width: 0 !important;
            height: auto !important; flex: 0 0 auto !important; }}

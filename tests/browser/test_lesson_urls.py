@@ -1,5 +1,7 @@
 """Every link of the lesson (docs/teaching.md, app/lesson.py) opens the explorer in the
-state it names -- tab, springs, load, orientation, playing -- without a notice."""
+state it names -- tab, springs, load, orientation, projector mode -- without a notice,
+with the animation waiting at its first frame until Play is pressed (the class predicts
+first)."""
 from __future__ import annotations
 
 import math
@@ -14,7 +16,6 @@ from . import page_tools as pt
 pytestmark = [pytest.mark.browser, pytest.mark.timeout(300)]
 
 PLAYERS = {"support": "support_player_frame", "array": "array_player_frame"}
-STILL_WHILE_PLAYING = ["scene_points", "friction_law"]
 
 
 def _frame(page, name):
@@ -26,9 +27,7 @@ def _frame(page, name):
 def test_a_lesson_link_opens_its_state(page, page_log, app_url, step):
     url = lesson_url(step).replace(BASE_URL, app_url)
     pt.wait_for_app(page, url)
-    # The support's results (its path, the friction law at its load): a playing animation
-    # changes every other source on each frame, so the whole page never comes to rest.
-    pt.settle(page, names=STILL_WHILE_PLAYING if step.play else None)
+    pt.settle(page)  # at rest: nothing plays
     notice = page.locator(".page-notice")
     assert not notice.is_visible(), notice.inner_text()
     k_r = pt.find_slider(page, "ctl-k_r", r"^k_r")
@@ -37,11 +36,13 @@ def test_a_lesson_link_opens_its_state(page, page_log, app_url, step):
     assert theta0.value == step.theta0_deg
     active = page.locator(".tab-bar .bk-btn.bk-active, .tab-bar button.bk-active").first
     assert active.is_visible()
-    if step.play:
+    assert pt.model_value(page, "Toggle$", "active", "ctl-projector") is True, \
+        "the link dropped projector mode"
+    if step.tab in PLAYERS:
         name = PLAYERS[step.tab]
-        deadline, waited = 60_000, 0
-        while (_frame(page, name) or 0) < 5 and waited < deadline:
-            page.wait_for_timeout(250)
-            waited += 250
-        assert (_frame(page, name) or 0) >= 5, f"the {step.tab} animation is not playing"
+        page.wait_for_timeout(2000)
+        assert _frame(page, name) == 0, f"the {step.tab} animation started before Play"
+        page.locator('[title="Play or pause (Space)"] >> visible=true').first.click()
+        pt.wait_for(page, lambda: (_frame(page, name) or 0) >= 5, timeout_s=30,
+                    what=f"the {step.tab} animation to play after Play")
     assert page_log.errors == [], page_log.errors

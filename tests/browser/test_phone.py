@@ -1,0 +1,75 @@
+"""The dashboard on a real phone's emulation (Playwright ``is_mobile``, touch, device scale
+factor 3, 390 x 844): the page declares its viewport (without it a phone lays the page out
+980 px wide and shrinks it to ~0.4), never scrolls sideways, draws no text under 12 px
+and no tap target under 44 px, on every tab; the Design tab's figures cover no input."""
+from __future__ import annotations
+
+import pytest
+
+from app.urlstate import TABS
+
+from . import page_tools as pt
+from . import phone_tools as ph
+
+pytestmark = [pytest.mark.browser, pytest.mark.timeout(300)]
+
+
+def _phone(browser, url):
+    context = browser.new_context(**ph.PHONE)
+    context.set_default_timeout(30_000)
+    page = context.new_page()
+    pt.wait_for_app(page, url, timeout_ms=90_000)
+    pt.settle(page)
+    page.wait_for_timeout(500)
+    return context, page
+
+
+def _check(found: dict, canvas: list, where: str) -> None:
+    assert found["meta"] == "width=device-width, initial-scale=1", where
+    assert found["scroll_width"] <= found["width"], \
+        f"{where}: the page scrolls sideways ({found['scroll_width']} px)"
+    assert found["small"] == [], f"{where}: text under {ph.MIN_TEXT_PX} px: {found['small'][:5]}"
+    assert found["tiny"] == [], f"{where}: targets under {ph.MIN_TARGET_PX} px: {found['tiny'][:5]}"
+    small = [c for c in canvas if c["size"] < ph.MIN_TEXT_PX]
+    assert small == [], f"{where}: figure text under {ph.MIN_TEXT_PX} px: {small[:5]}"
+
+
+@pytest.mark.parametrize("tab", TABS)
+def test_every_tab_fits_a_phone(browser, app_url, tab):
+    context, page = _phone(browser, f"{app_url}?tab={tab}")
+    try:
+        assert page.evaluate("() => window.innerWidth") == ph.PHONE["viewport"]["width"], \
+            "the phone did not lay the page out at its own width"
+        _check(ph.scan(page), ph.canvas_text_sizes(page), f"{tab} tab")
+        if tab == "support":  # the controls, opened
+            page.locator(".sidebar").get_by_text("Controls", exact=True).first.click()
+            pt.wait_for(page, lambda: page.locator(".ctl-k_r .noUi-handle").is_visible(),
+                        what="the controls to open")
+            page.wait_for_timeout(500)
+            _check(ph.scan(page), [], "the opened controls")
+    finally:
+        context.close()
+
+
+def test_the_design_figures_cover_no_input_on_a_phone(browser, app_url):
+    context, page = _phone(browser, f"{app_url}?tab=design")
+    try:
+        pt.wait_for_plot(page, "regime_map")
+        boxes = page.evaluate("""() => {
+          const out = {};
+          for (const m of Bokeh.documents[0].all_models) {
+            if (m.name !== "regime_map" || !("x_range" in m)) continue;
+            const v = Bokeh.index.find_one(m);
+            if (!v || v.el.getBoundingClientRect().width === 0) continue;
+            const r = v.el.getBoundingClientRect();
+            out.map = [r.left, r.top, r.width, r.height];
+          }
+          return out;
+        }""")
+        top = boxes["map"][1]
+        for name in ("design_V0", "design_V_s", "design_F_N"):
+            box = page.locator(f".ctl-{name} input").first.bounding_box()
+            assert box is not None, name
+            assert box["y"] + box["height"] <= top + 1, (name, box, boxes)
+    finally:
+        context.close()
