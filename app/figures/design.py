@@ -103,7 +103,7 @@ def design_map_figure(regime_map, point: dict | None = None, width: int = 330,
     fig.scatter("k_r", "k_theta", source=star, marker="star", size=20, fill_color=VERMILION,
                 line_color=BLACK, legend_label="this design")
     fig.text("k_r", "k_theta", text="note", source=star, text_align="right",
-             text_baseline="top", x_offset=-4, y_offset=12, text_font_size="11px",
+             text_baseline="top", x_offset=-4, y_offset=12, text_font_size="12px",
              text_color=BLACK, background_fill_color="white", background_fill_alpha=0.85)
     fig.hover.renderers = [*fig.hover.renderers, line]
     fig.hover.tooltips = [*fig.hover.tooltips, ("V₀ [m/s]", "@V0{0.000e}")]

@@ -98,7 +98,7 @@ class DesignView(pn.viewable.Viewer):
         super().__init__(**params)
         s = self.state
         self.inputs = {name: pn.widgets.TextInput.from_param(
-            s.param[name], **caption(label), width=94, margin=(0, 3), stylesheets=[INPUT_CSS],
+            s.param[name], **caption(label), width=94, margin=(0, 3),
             css_classes=[f"ctl-{name}"]) for name, (_, _, label, _) in DESIGN_INPUTS.items()}
         self.family = pn.widgets.Select.from_param(
             s.param.dist_family, options=FAMILY_LABELS, **caption("Orientations"), width=96,
@@ -135,6 +135,10 @@ class DesignView(pn.viewable.Viewer):
                                                  width=90, css_classes=["design-optimise"])
         self.cancel_button = pn.widgets.Button(**caption("Cancel"), **look("light"), width=70,
                                                disabled=True, css_classes=["design-cancel"])
+        for widget in (*self.inputs.values(), self.family, self.angle, self.kappa, self.psi,
+                       self.mix, self.family2, self.angle2, self.kappa2, self.objective,
+                       self.bound, self.optimise_button, self.cancel_button):
+            widget.stylesheets = [*widget.stylesheets, INPUT_CSS]  # touch-sized on a phone
         self.upload = HistogramUpload(state=s)
         self.optimise_button.on_click(lambda _e: self.results.optimise())
         self.cancel_button.on_click(lambda _e: self.results.cancel_optimum())

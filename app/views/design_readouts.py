@@ -19,6 +19,7 @@ from model.design_table import headline, rows, table_csv
 
 from ..results import SessionResults
 from ..state import ExplorerState
+from .layout import BUTTON_CSS
 from .widgets import look
 
 #: A table of numbers that belong to the previous inputs.
@@ -56,7 +57,7 @@ class DesignReadouts(pn.viewable.Viewer):
         self.download = pn.widgets.FileDownload(
             callback=self._csv, filename="design_table.csv", label="Design table CSV",
             **look("light"), width=160, margin=(2, 5), disabled=True,
-            css_classes=["download-design-table"])
+            css_classes=["download-design-table"], stylesheets=[BUTTON_CSS])
         self._since = None
         self._ticker = None
         self._on_array()

@@ -16,6 +16,7 @@ import param
 
 from ..histogram import MAX_UPLOAD_BYTES, describe, link_note, read_upload
 from ..state import ExplorerState
+from .layout import INPUT_CSS
 
 #: Markdown and HTML characters, escaped where a file's name or content is echoed.
 _MARKUP = re.compile(r"([\\`*_{}\[\]()#!|<>&~])")
@@ -35,6 +36,7 @@ class HistogramUpload(pn.viewable.Viewer):
         super().__init__(**params)
         self.file = pn.widgets.FileInput(accept=".csv,.txt,text/csv,text/plain", width=300,
                                          margin=(2, 5), css_classes=["design-histogram-file"],
+                                         stylesheets=[INPUT_CSS],
                                          description=f"{FORMAT}; at most "
                                                      f"{MAX_UPLOAD_BYTES // 1024} kB")
         self.note = pn.pane.Markdown("", width=300, margin=(0, 5),

@@ -119,7 +119,9 @@ BUTTON_CSS = f"""
 
 
 #: Text inputs, number inputs and menus touch-sized on a phone.
-INPUT_CSS = f"{PHONE} {{ .bk-input {{ min-height: 44px !important; }} }}"
+INPUT_CSS = (f"{PHONE} {{ .bk-input, .bk-btn {{ min-height: 44px !important; }} "
+             # the number keypad replaces a number input's 18-px arrows on a phone
+             f".bk-spin-wrapper {{ display: none !important; }} }}")
 
 
 def grid_css(columns: str, rows: str, spans: dict | None = None, phone_height: int = 360,
