@@ -1,13 +1,15 @@
 """The offline explorer: one self-contained HTML file that computes in the browser.
 
-``write(path)`` (the CLI's ``micropillar pack --out explorer.html``) builds the page with
-Bokeh's Python API -- the top view of the support's orbit, the sliders k_r, k_theta, F_N,
-theta0, the regime presets, the headline friction number (Eq. 10 for an array of one
-orientation) -- and saves it with BokehJS inlined (``bokeh.resources.INLINE``: no CDN, no
-font, no request). The plot's data sources are empty at pack time: the JavaScript port of
-the kernel (``kernel.js``) fills them in the page, in a Web Worker, whenever a control
-moves (``page.js``). The state lives in the URL fragment (``#k_r=3&k_theta=0.01&F_N=1&
-theta0_deg=90``). docs/offline.md documents the page and its JavaScript API.
+``write(path)`` (the CLI's ``micropillar pack --out explorer.html``) lays out the page with
+Bokeh's Python API -- the sliders k_r, k_theta, F_N, theta0, the regime presets, projector
+mode, the headline, and three tabs of the dashboard's figures (``figures.py``: the
+support with Fig. 7, Fig. 3, the energy bars of Eq. 12 and the player; the polar
+diagrams of Fig. 11; the shipped regime maps of Fig. 5) -- and saves it with BokehJS
+inlined (``bokeh.resources.INLINE``: no CDN, no font, no request). In the page the
+JavaScript port of the kernel (``kernel.js``) recomputes in Web Workers whenever a control
+moves, ``views.js`` turns its results into the figures' data and ``page.js`` holds the
+state, also in the URL fragment (``#k_r=3&k_theta=0.01&F_N=1&theta0_deg=90&tab=polar``).
+docs/offline.md documents the page and its JavaScript API.
 
 The ranges, defaults, regimes and their titles are read here from ``model.controls``,
 ``model.params.REGIMES``, ``app.texts`` and ``app.urlstate`` and handed to the page as JSON:
