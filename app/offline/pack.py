@@ -1,13 +1,15 @@
 """The offline explorer: one self-contained HTML file that computes in the browser.
 
-``write(path)`` (the CLI's ``micropillar pack --out explorer.html``) builds the page with
-Bokeh's Python API -- the top view of the support's orbit, the sliders k_r, k_theta, F_N,
-theta0, the regime presets, the headline friction number (Eq. 10 for an array of one
-orientation) -- and saves it with BokehJS inlined (``bokeh.resources.INLINE``: no CDN, no
-font, no request). The plot's data sources are empty at pack time: the JavaScript port of
-the kernel (``kernel.js``) fills them in the page, in a Web Worker, whenever a control
-moves (``page.js``). The state lives in the URL fragment (``#k_r=3&k_theta=0.01&F_N=1&
-theta0_deg=90``). docs/offline.md documents the page and its JavaScript API.
+``write(path)`` (the CLI's ``micropillar pack --out explorer.html``) lays out the page with
+Bokeh's Python API -- the sliders k_r, k_theta, F_N, theta0, the regime presets, projector
+mode, the headline, and three tabs of the dashboard's figures (``figures.py``: the
+support with Fig. 7, Fig. 3, the energy bars of Eq. 12 and the player; the polar
+diagrams of Fig. 11; the shipped regime maps of Fig. 5) -- and saves it with BokehJS
+inlined (``bokeh.resources.INLINE``: no CDN, no font, no request). In the page the
+JavaScript port of the kernel (``kernel.js``) recomputes in Web Workers whenever a control
+moves, ``views.js`` turns its results into the figures' data and ``page.js`` holds the
+state, also in the URL fragment (``#k_r=3&k_theta=0.01&F_N=1&theta0_deg=90&tab=polar``).
+docs/offline.md documents the page and its JavaScript API.
 
 The ranges, defaults, regimes and their titles are read here from ``model.controls``,
 ``model.params.REGIMES``, ``app.texts`` and ``app.urlstate`` and handed to the page as JSON:
@@ -16,14 +18,16 @@ defined once, in Python.
 from __future__ import annotations
 
 import json
+import re
 import math
 from importlib import resources
 from pathlib import Path
 
+from bokeh.document import Document
 from bokeh.embed import file_html
 from bokeh.layouts import column, row
-from bokeh.models import Button, ColumnDataSource, CustomJS, CustomJSTickFormatter, Div, Slider
-from bokeh.plotting import figure
+from bokeh.models import (Button, CustomJS, CustomJSTickFormatter, Div, Select, Slider,
+                          TabPanel, Tabs, Toggle)
 from bokeh.resources import INLINE
 
 from model.controls import CONTROLS, DEFAULT_REGIME
@@ -32,15 +36,14 @@ from model.params import REGIMES
 
 from ..texts import MECHANISMS
 from ..urlstate import TABS
+from . import figures as views
 
 __all__ = ["page_html", "write", "config", "MAX_BYTES", "OFFLINE_TABS"]
 
 #: The page's size bound (the issue's target): BokehJS inlined is most of it.
 MAX_BYTES = 5 * 1024 * 1024
 #: The tabs of the dashboard the offline page shows (the others say they are not in it yet).
-OFFLINE_TABS = ("support",)
-#: Samples of the orbit drawn per contact (uniform in tau).
-ORBIT_SAMPLES = 1500
+OFFLINE_TABS = ("support", "polar", "map")
 TITLE = "Micropillar friction explorer (offline)"
 
 _SLIDERS = (  # (control, fragment key, title, log scale)
@@ -49,6 +52,19 @@ _SLIDERS = (  # (control, fragment key, title, log scale)
     ("F_N", "F_N", "F_N: normal load", True),
     ("theta0_deg", "theta0_deg", "θ₀: rest orientation [deg]", False),
 )
+
+
+#: What the page leaves to the server (docs/offline.md says why).
+MISSING = ("Not in this offline page: the uniform array with its self-consistent β (and "
+           "so the headline's average over all orientations), the array view, the load "
+           "curves, the equations, the design tab, pinning a state, the lesson. Every "
+           "support here carries β = 1 (no contact-count correction). Run "
+           "<code>panel serve app</code> for the full explorer.")
+#: The headline's clause for the uniform array, which the offline page does not compute.
+UNIFORM_NOTE = "needs the server (panel serve app)"
+POLAR_CAPTION = ("Fixed-orientation arrays (every support at the same θ₀) for the current "
+                 "springs and load, 72 orientations on [0°, 180°] mirrored (y → −y), each "
+                 "support with β = 1; computed in this page. Click a diagram to set θ₀.")
 
 
 def config() -> dict:
@@ -64,7 +80,7 @@ def config() -> dict:
                for name, p in REGIMES.items()}
     return dict(controls=controls, regimes=regimes, default_regime=DEFAULT_REGIME,
                 mu0=mu0(), tabs=list(TABS), offline_tabs=list(OFFLINE_TABS),
-                orbit_samples=ORBIT_SAMPLES)
+                uniform_note=UNIFORM_NOTE, **views.constants())
 
 
 def _slider(key: str, title: str, spec: dict) -> Slider:
@@ -83,30 +99,55 @@ def _slider(key: str, title: str, spec: dict) -> Slider:
     return slider
 
 
-def _orbit_figure() -> figure:
-    """The support seen from above: its pivot, rest position and the orbit of the mass."""
-    fig = figure(title="The support seen from above (slab slides along +x)", name="orbit-figure",
-                 x_axis_label="x [r₀]", y_axis_label="y [r₀]", match_aspect=True,
-                 sizing_mode="stretch_both", min_height=320, tools="pan,wheel_zoom,reset",
-                 output_backend="canvas")
-    orbit = ColumnDataSource(dict(x=[], y=[]), name="orbit-source")
-    ends = ColumnDataSource(dict(x=[], y=[], label=[]), name="ends-source")
-    spring = ColumnDataSource(dict(x=[], y=[]), name="spring-source")
-    fig.line("x", "y", source=spring, line_dash="dashed", line_color="#888888",
-             legend_label="spring at rest")
-    fig.line("x", "y", source=orbit, line_width=2, line_color="#1f77b4",
-             legend_label="path of the mass")
-    fig.scatter(x=[0.0], y=[0.0], marker="circle_x", size=12, fill_color="white",
-                line_color="black", legend_label="pivot")
-    fig.scatter("x", "y", source=ends, marker="circle", size=9, color="#d62728",
-                legend_label="rest → exit")
-    legend = fig.legend[0]
-    legend.orientation = "horizontal"
-    fig.add_layout(legend, "below")
-    return fig
+def _support_tab(figs):
+    """The dashboard's Support tab: scene and Fig. 7, the player, Fig. 3 and the energy."""
+    for key in ("scene", "forces", "law"):
+        figs[key].sizing_mode = "stretch_width"
+        figs[key].min_width = 300
+    energy = figs["energy"]
+    energy.sizing_mode = figs["energy_fig"].sizing_mode = "stretch_width"
+    energy.min_width = figs["energy_fig"].min_width = 300
+    wrap = dict(sizing_mode="stretch_width", styles={"flex-wrap": "wrap"})
+    return column([row([figs["scene"], figs["forces"]], **wrap), figs["player"].layout,
+                   row([figs["law"], energy], **wrap)], sizing_mode="stretch_width",
+                  name="support-tab")
 
 
-def _layout(cfg: dict):
+def _polar_tab(polar):
+    status = Div(text="", name="polar-status", styles={"color": "#555555"},
+                 sizing_mode="stretch_width")
+    caption = Div(text=POLAR_CAPTION, name="polar-caption", sizing_mode="stretch_width",
+                  styles={"color": "#555555", "font-size": "0.9em"})
+    for fig in polar.values():
+        fig.js_on_event("tap", CustomJS(code="if (window.explorer) window.explorer._polarTap("
+                                             "cb_obj.x, cb_obj.y);"))
+    cells = [column([fig], width=335, height=360) for fig in polar.values()]
+    return column([row(cells, styles={"flex-wrap": "wrap"}, sizing_mode="stretch_width",
+                       name="polar-row"), status, caption],
+                  sizing_mode="stretch_width", name="polar-tab")
+
+
+def _map_tab(fig):
+    fig.sizing_mode = "stretch_width"
+    fig.min_width = 300
+    fig.js_on_event("tap", CustomJS(code="if (window.explorer) window.explorer._mapTap("
+                                         "cb_obj.x, cb_obj.y);"))
+    quantity = Select(title="map", value="5a", name="map-quantity", width=260,
+                      options=[(q, re.sub(r", F_N = [0-9.]+", "", t))
+                               for q, t in _map_titles().items()])
+    quantity.js_on_change("value", CustomJS(
+        code="if (window.explorer) window.explorer._mapQuantity(cb_obj.value);"))
+    note = Div(text="", name="map-note", sizing_mode="stretch_width",
+               styles={"color": "#555555", "font-size": "0.9em"})
+    return column([quantity, fig, note], sizing_mode="stretch_width", name="map-tab")
+
+
+def _map_titles() -> dict:
+    from ..figures.arrays import MAP_QUANTITIES
+    return {q: t for q, (_, t) in MAP_QUANTITIES.items()}
+
+
+def _layout(cfg: dict, figs: dict, polar: dict, regime_map):
     controls = cfg["controls"]
     sliders = [_slider(key, title, controls[key]) for _, key, title, _ in _SLIDERS]
     presets = []
@@ -119,17 +160,32 @@ def _layout(cfg: dict):
     heading = Div(text=f"<h1 style='margin:0.2em 0;font-size:1.4em'>{TITLE}</h1>",
                   name="heading")
     notice = Div(text="", name="notice", styles={"color": "#8a4b00"})
-    headline = Div(text="computing…", name="headline", styles={"font-size": "1.25em"})
+    headline = Div(text="computing…", name="headline", sizing_mode="stretch_width",
+                   styles={"font-size": "1.15em", "font-weight": "600"})
+    number = Div(text="", name="headline-number", styles={"font-size": "1.0em"})
     status = Div(text="", name="status", styles={"color": "#555555", "font-size": "0.9em"})
-    missing = Div(text=("Not in this offline page yet: the friction histories, energy bars, "
-                        "the array, the polar diagrams, the uniform array with its "
-                        "self-consistent β, the regime maps, projector mode. "
-                        "Run <code>panel serve app</code> for the full explorer."),
-                  name="missing", styles={"color": "#555555", "font-size": "0.85em"})
-    side = column([heading, headline, notice, row(presets, sizing_mode="stretch_width"),
-                   *sliders, status, missing], sizing_mode="stretch_width", width=360,
-                  min_width=280, max_width=420)
-    return row([side, _orbit_figure()], sizing_mode="stretch_both", name="layout")
+    projector = Toggle(label="Projector mode", name="projector", active=False, width=160,
+                       html_attributes={"title": "Larger text and thicker lines for a "
+                                                 "projected screen (projector=1 in the link)"})
+    projector.js_on_change("active", CustomJS(
+        code="if (window.explorer) window.explorer._projector(cb_obj.active);"))
+    missing = Div(text=MISSING, name="missing", styles={"color": "#555555", "font-size": "0.85em"})
+    side = column([number, notice, row(presets, sizing_mode="stretch_width",
+                                                 styles={"flex-wrap": "wrap"}),
+                   *sliders, status, projector, missing], sizing_mode="stretch_width",
+                  min_width=280, max_width=400, name="side")
+    tabs = Tabs(tabs=[TabPanel(child=_support_tab(figs), title="Support", name="tab-support"),
+                      TabPanel(child=_polar_tab(polar), title="Polar (Fig. 11)",
+                               name="tab-polar"),
+                      TabPanel(child=_map_tab(regime_map), title="Regime map (Fig. 5)",
+                               name="tab-map")],
+                name="tabs", sizing_mode="stretch_width", min_width=300)
+    tabs.js_on_change("active", CustomJS(
+        code="if (window.explorer) window.explorer._tab(cb_obj.active);"))
+    body = row([side, tabs], sizing_mode="stretch_width",
+               styles={"flex-wrap": "wrap", "gap": "8px"})
+    return column([heading, headline, body], sizing_mode="stretch_width", name="layout",
+                  styles={"overflow-x": "hidden"})
 
 
 def _script(element_id: str, source: str, kind: str = "") -> str:
@@ -143,11 +199,20 @@ def _script(element_id: str, source: str, kind: str = "") -> str:
 def page_html() -> str:
     """The whole page: Bokeh's document with BokehJS inlined, the kernel and the page code."""
     cfg = config()
-    html = file_html(_layout(cfg), resources=INLINE, title=TITLE)
+    figs, polar, regime_map = views.support_figures(), views.polar_figures(), views.map_figure()
+    cfg["maps"] = views.maps()
+    cfg["projector"] = views.projector_styles(
+        [figs["scene"], figs["forces"], figs["law"], figs["energy_fig"], *polar.values(),
+         regime_map])
+    doc = Document()
+    doc.add_root(_layout(cfg, figs, polar, regime_map))
+    doc.title = TITLE
+    figs["player"].install(doc)  # the player's keyboard shortcuts (no autoplay)
+    html = file_html(doc, resources=INLINE, title=TITLE)
     here = resources.files(__package__)
     extra = (_script("mp-config", json.dumps(cfg).replace("</", "<\\/"), "application/json")
-             + _script("mp-kernel", (here / "kernel.js").read_text(encoding="utf-8"))
-             + _script("mp-page", (here / "page.js").read_text(encoding="utf-8")))
+             + "".join(_script(f"mp-{name}", (here / f"{name}.js").read_text(encoding="utf-8"))
+                       for name in ("kernel", "views", "page")))
     head_extra = ('<meta name="viewport" content="width=device-width, initial-scale=1">\n'
                   '<meta http-equiv="Content-Security-Policy" content="default-src \'none\'; '
                   'script-src \'unsafe-inline\' \'unsafe-eval\' blob:; worker-src blob:; '

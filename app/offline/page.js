@@ -8,7 +8,8 @@
  *   explorer.set({k_r: 0.5, ...}) -> change the state (as the sliders do) and redraw;
  *   explorer.preset("slider") -> a regime's springs;
  *   explorer.result  -> the last drawn result; explorer.drawn counts the redraws;
- *   explorer.ready   -> a Promise resolved at the first drawn plot.
+ *   explorer.ready   -> a Promise resolved at the first drawn plot;
+ *   explorer.polar   -> the last orientation sweep drawn (Fig. 11), explorer.polarDrawn.
  * Reads its configuration (ranges, defaults, regimes: from the Python model at pack time)
  * from the JSON element #mp-config and the kernel from #mp-kernel.
  */
@@ -16,14 +17,16 @@
   "use strict";
   var CONFIG = JSON.parse(document.getElementById("mp-config").textContent);
   var KERNEL = window.MicropillarKernel;
+  var VIEWS = window.MicropillarViews;
   var CONTROLS = CONFIG.controls;
   var KEYS = ["k_r", "k_theta", "F_N", "theta0_deg"];
+  var FLAGS = ["projector", "play"];  // 0 or 1 in the link
   var MAX_STEPS = 1000000;
   var RESTART_AFTER_MS = 300;   // a newer request stops a computation older than this
 
   // ------------------------------------------------------------ state and fragment
   function defaults() {
-    var s = {tab: "support"};
+    var s = {tab: "support", projector: false, play: false};
     KEYS.forEach(function (k) { s[k] = CONTROLS[k].default; });
     return s;
   }
@@ -66,13 +69,16 @@
         if (inRange(key, x)) s[key] = x;
         else notices.push(key + "=" + value.slice(0, 40) + " is not " + CONTROLS[key].expected +
                           ": using the default " + CONTROLS[key].default);
+      } else if (FLAGS.indexOf(key) >= 0) {
+        if (value === "1" || value === "0") s[key] = value === "1";
+        else notices.push(key + "=" + value.slice(0, 40) + " is not 0 or 1: ignored");
       } else if (key === "tab") {
         if (CONFIG.tabs.indexOf(value) < 0) {
           notices.push("tab=" + value.slice(0, 40) + " is not a tab (one of " + CONFIG.tabs.join(", ") +
                        "): showing the support");
         } else if (CONFIG.offline_tabs.indexOf(value) < 0) {
-          s.tab = value;
-          notices.push("the " + value + " tab is not in the offline explorer yet: showing the support");
+          notices.push("the " + value + " tab is not in the offline explorer (it needs the server): " +
+                        "showing the support");
         } else s.tab = value;
       } else {
         notices.push(key.slice(0, 40) + " is not a setting of the offline explorer: ignored");
@@ -83,20 +89,33 @@
 
   function fragment(s) {
     var parts = KEYS.map(function (k) { return k + "=" + Number(s[k].toPrecision(6)); });
-    if (s.tab && s.tab !== "support") parts.push("tab=" + s.tab);
+    if (s.tab && s.tab !== "support" && CONFIG.offline_tabs.indexOf(s.tab) >= 0) parts.push("tab=" + s.tab);
+    if (s.projector) parts.push("projector=1");
     return "#" + parts.join("&");
   }
 
   // ------------------------------------------------------------ Bokeh models
-  var doc = null;
-  function model(name) { return doc.get_model_by_name(name); }
+  // Figures and their sources share names (the dashboard's "forces", "polar_FTx"): a
+  // model is found by its name and kind.
+  var doc = null, byName = {};
+  function isSource(m) { return m.data !== undefined && m.selected !== undefined; }
+  function isFigure(m) { return m.x_range !== undefined && m.renderers !== undefined; }
+  function find(name, test) {
+    var list = byName[name] || [];
+    for (var i = 0; i < list.length; i++) if (!test || test(list[i])) return list[i];
+    throw new Error("the page has no model named " + name);
+  }
+  function model(name) { return find(name, function (m) { return !isSource(m) && !isFigure(m); }); }
+  function source(name) { return find(name, isSource); }
+  function figure(name) { return find(name, isFigure); }
+  function setData(map) { Object.keys(map).forEach(function (k) { source(k).data = map[k]; }); }
   function esc(text) {
     return String(text).replace(/[&<>"]/g, function (c) {
       return {"&": "&amp;", "<": "&lt;", ">": "&gt;", "\"": "&quot;"}[c];
     });
   }
-  var syncing = false;  // true while the page itself moves the sliders
-  function syncSliders() {
+  var syncing = false;  // true while the page itself moves the controls
+  function syncControls() {
     syncing = true;
     try {
       KEYS.forEach(function (k) {
@@ -104,7 +123,11 @@
         var v = c.log ? Math.log10(state[k]) : state[k];
         if (Math.abs(slider.value - v) > 1e-12) slider.value = v;
       });
+      var tab = Math.max(0, CONFIG.offline_tabs.indexOf(state.tab));
+      if (model("tabs").active !== tab) model("tabs").active = tab;
+      if (model("projector").active !== state.projector) model("projector").active = state.projector;
     } finally { syncing = false; }
+    applyProjector();
   }
   function showNotice(notices) {
     model("notice").text = notices.length
@@ -112,121 +135,283 @@
   }
 
   // ------------------------------------------------------------ computing
-  var worker = null, inFlight = null, pending = null, nextId = 1;
+  // Two workers, each with its own queue: one contact (the Support tab, the headline) and
+  // the orientation sweep (Fig. 11), so a long sweep never delays the support.
+  var WORKER_CODE =
+    "\nfunction contact(input) { return MicropillarKernel.simulate(input); }\n" +
+    "function sweep(job) {\n" +
+    "  var keys = ['F_mean_x', 'F_mean_y', 'D_x', 'D_y', 't_out'], out = {theta0: job.theta0, success: []};\n" +
+    "  keys.forEach(function (k) { out[k] = []; });\n" +
+    "  job.theta0.forEach(function (t) {\n" +
+    "    var r = MicropillarKernel.simulate(Object.assign({}, job.base, {theta0: t}));\n" +
+    "    keys.forEach(function (k) { out[k].push(r[k]); });\n" +
+    "    out.success.push(r.success);\n" +
+    "  });\n  return out;\n}\n" +
+    "self.onmessage = function (e) {\n" +
+    "  var t0 = Date.now(), r;\n" +
+    "  try { r = e.data.kind === 'sweep' ? sweep(e.data.input) : contact(e.data.input); }\n" +
+    "  catch (error) { r = {error: error.message}; }\n" +
+    "  self.postMessage({id: e.data.id, result: r, ms: Date.now() - t0});\n};\n";
 
-  function input(s) {
-    return {k_r: s.k_r, k_theta: s.k_theta, F_N: s.F_N, theta0: s.theta0_deg * Math.PI / 180,
-            rtol: 1e-6, samples: CONFIG.orbit_samples, max_steps: MAX_STEPS};
-  }
-
-  function startWorker() {
+  function startWorker(channel) {
     try {
-      var source = document.getElementById("mp-kernel").textContent +
-        "\nself.onmessage = function (e) {\n" +
-        "  var t0 = Date.now(), r;\n" +
-        "  try { r = MicropillarKernel.simulate(e.data.input); }\n" +
-        "  catch (error) { r = {error: error.message}; }\n" +
-        "  self.postMessage({id: e.data.id, result: r, ms: Date.now() - t0});\n};\n";
-      var url = URL.createObjectURL(new Blob([source], {type: "text/javascript"}));
+      var code = document.getElementById("mp-kernel").textContent + WORKER_CODE;
+      var url = URL.createObjectURL(new Blob([code], {type: "text/javascript"}));
       var w = new Worker(url);
       URL.revokeObjectURL(url);
-      w.onmessage = function (e) { finished(e.data.id, e.data.result, e.data.ms); };
-      w.onerror = function () { worker = null; };
+      w.onmessage = function (e) { finished(channel, e.data.id, e.data.result, e.data.ms); };
+      w.onerror = function () { channel.worker = null; };
       return w;
     } catch (error) {
       return null;  // no workers (an old browser): compute on the page, one job at a time
     }
   }
 
-  function request() {
-    var job = {id: nextId++, input: input(state), started: Date.now()};
-    if (inFlight) {
-      pending = job;
-      if (worker && Date.now() - inFlight.started > RESTART_AFTER_MS) {
-        worker.terminate();  // a long contact the user has moved on from
-        worker = startWorker();
-        inFlight = null;
-        send(pending);
-        pending = null;
+  function Channel(kind, draw, busy) {
+    this.kind = kind; this.draw = draw; this.busy = busy;
+    this.worker = null; this.inFlight = null; this.pending = null;
+  }
+  var nextId = 1;
+
+  function request(channel, input) {
+    var job = {id: nextId++, input: input, started: Date.now()};
+    if (channel.inFlight) {
+      channel.pending = job;
+      if (channel.worker && Date.now() - channel.inFlight.started > RESTART_AFTER_MS) {
+        channel.worker.terminate();  // a long computation the user has moved on from
+        channel.worker = startWorker(channel);
+        channel.inFlight = null;
+        channel.pending = null;
+        send(channel, job);
       }
       return;
     }
-    send(job);
+    send(channel, job);
   }
 
-  function send(job) {
-    inFlight = job;
-    model("status").text = "computing…";
-    if (worker) { worker.postMessage({id: job.id, input: job.input}); return; }
+  function send(channel, job) {
+    channel.inFlight = job;
+    channel.busy(true);
+    if (channel.worker) { channel.worker.postMessage({id: job.id, kind: channel.kind, input: job.input}); return; }
     setTimeout(function () {
       var t0 = Date.now(), r;
-      try { r = KERNEL.simulate(job.input); } catch (error) { r = {error: error.message}; }
-      finished(job.id, r, Date.now() - t0);
+      try {
+        r = channel.kind === "sweep" ? sweepHere(job.input) : KERNEL.simulate(job.input);
+      } catch (error) { r = {error: error.message}; }
+      finished(channel, job.id, r, Date.now() - t0);
     }, 0);
   }
 
-  function finished(id, result, ms) {
-    if (!inFlight || inFlight.id !== id) return;  // an abandoned job
-    inFlight = null;
-    if (pending) { var next = pending; pending = null; send(next); return; }
-    draw(result, ms);
+  function sweepHere(job) {  // the worker's sweep, on the page (no Worker)
+    var out = {theta0: job.theta0, success: [], F_mean_x: [], F_mean_y: [], D_x: [], D_y: [], t_out: []};
+    job.theta0.forEach(function (t) {
+      var r = KERNEL.simulate(Object.assign({}, job.base, {theta0: t}));
+      ["F_mean_x", "F_mean_y", "D_x", "D_y", "t_out"].forEach(function (k) { out[k].push(r[k]); });
+      out.success.push(r.success);
+    });
+    return out;
   }
 
-  // ------------------------------------------------------------ drawing
+  function finished(channel, id, result, ms) {
+    if (!channel.inFlight || channel.inFlight.id !== id) return;  // an abandoned job
+    channel.inFlight = null;
+    if (channel.pending) { var next = channel.pending; channel.pending = null; send(channel, next); return; }
+    channel.busy(false);
+    channel.draw(result, ms);
+  }
+
+  var contactChannel = new Channel("contact", drawSupport, function (on) {
+    if (on) model("status").text = "computing…";
+  });
+  var sweepChannel = new Channel("sweep", drawPolar, function (on) {
+    if (on) model("polar-status").text = "computing the 72 orientations in the page…";
+  });
+
+  function contactInput(s) {
+    return {k_r: s.k_r, k_theta: s.k_theta, F_N: s.F_N, theta0: s.theta0_deg * Math.PI / 180,
+            rtol: 1e-6, samples: CONFIG.support_samples, max_steps: MAX_STEPS};
+  }
+  function sweepInput(s) {
+    return {theta0: CONFIG.polar_theta0,
+            base: {k_r: s.k_r, k_theta: s.k_theta, F_N: s.F_N, rtol: 1e-6, max_steps: MAX_STEPS}};
+  }
+  function sweepKey(s) { return [s.k_r, s.k_theta, s.F_N].join(","); }
+
+  // ------------------------------------------------------------ drawing: the support
   var readyResolve;
   var explorer = {
     ready: new Promise(function (resolve) { readyResolve = resolve; }),
-    drawn: 0, result: null
+    drawn: 0, result: null, polar: null, polarDrawn: 0
   };
 
-  function pct(x) { return (100 * x).toFixed(1); }
+  function range(fig, which, lohi) { fig[which].setv({start: lohi[0], end: lohi[1]}); }
 
-  function draw(r, ms) {
+  function drawSupport(r, ms) {
     if (r.error) {
       model("headline").text = "";
+      model("headline-number").text = "";
       model("status").text = "<b>Not computed:</b> " + esc(r.error);
       return;
     }
-    var ser = r.series;
-    var x = ser ? Array.from(ser.x) : [], y = ser ? Array.from(ser.y) : [];
-    model("orbit-source").data = {x: x, y: y};
-    var rest = KERNEL.restPosition(state.theta0_deg * Math.PI / 180);
-    model("spring-source").data = {x: [0, rest[0]], y: [0, rest[1]]};
-    model("ends-source").data = {x: [rest[0], r.state_out[0]], y: [rest[1], r.state_out[1]],
-                                 label: ["rest", "exit"]};
-    var ratio = r.F_mean_x / CONFIG.mu0;
-    var change = ratio < 1 ? pct(1 - ratio) + " % less friction than a rigid contact"
-                           : pct(ratio - 1) + " % more friction than a rigid contact";
-    var head = "F<sub>T,x</sub>/(μ<sub>0</sub>F<sub>N</sub>) = <b>" + ratio.toFixed(3) + "</b>" +
-      "<br><span style='font-size:0.8em'>An array whose supports all rest at θ₀ = " +
-      Number(state.theta0_deg.toFixed(1)) + "° (Eq. 10): " + change +
-      "; D<sub>y</sub>/D<sub>x</sub> = " + (r.D_y / r.D_x).toFixed(3) + ".</span>";
-    if (!r.success) head = "<span style='color:#b00020'>" + esc(r.message) + "</span><br>" + head;
-    model("headline").text = head;
+    var s = r.series, p = r.params;
+    setData(VIEWS.sceneData(s, p.theta0, CONFIG));
+    var box = VIEWS.viewBox(s, CONFIG), scene = figure("scene");
+    range(scene, "x_range", [box[0], box[1]]);
+    range(scene, "y_range", [box[2], box[3]]);
+    setData(VIEWS.forceData(s));
+    range(figure("forces"), "x_range", VIEWS.forceXRange(s));
+    range(figure("forces"), "y_range", VIEWS.forceYRange(s, CONFIG.mu0));
+    var energies = VIEWS.energyFrames(s, CONFIG);
+    range(figure("energy_live"), "y_range", energies.range);
+    var frames = VIEWS.supportFrames(s, p, CONFIG);
+    source("support_player_times").data = {t: frames.support_frames.tau};
+    var i = Math.min(model("support_player_frame").value, CONFIG.n_frames - 1);
+    model("support_player_readout").text = "frame " + (i + 1) + " / " + CONFIG.n_frames + " · τ = " +
+      frames.support_frames.tau[i].toFixed(2);
+    // New data redraw the current frame (the player's callbacks follow these sources).
+    source("energy_live_frames").data = energies.frames;
+    source("support_frames").data = frames.support_frames;
+    source("support_frame_params").data = frames.support_frame_params;
+    writeHeadline(r);
     model("status").text = "one contact: τ_out = " + r.t_out.toPrecision(4) + " r₀/V₀, " +
       r.stats.n_steps + " steps, computed in " + ms + " ms in the browser" +
       (r.success ? "" : " — <b>" + esc(r.message) + "</b>");
     explorer.result = r;
+    markPolar();
     explorer.drawn += 1;
     document.documentElement.setAttribute("data-drawn", String(explorer.drawn));
-    if (explorer.drawn === 1) readyResolve(r);
+    if (explorer.drawn === 1) { readyResolve(r); autoplay(); }
+  }
+
+  function writeHeadline(r) {
+    var ratio = r.F_mean_x / CONFIG.mu0;
+    var text = VIEWS.headlineText(ratio, Number(state.theta0_deg.toFixed(6)), null, CONFIG.uniform_note);
+    model("headline").text = (r.success ? "" : "<span style='color:#b00020'>" + esc(r.message) +
+                              "</span><br>") + esc(text);
+    model("headline-number").text = "F<sub>T,x</sub>/(μ<sub>0</sub>F<sub>N</sub>) = <b>" +
+      ratio.toFixed(3) + "</b> <span style='font-size:0.85em'>(every support at θ₀, Eq. 10; " +
+      "D<sub>y</sub>/D<sub>x</sub> = " + (r.D_y / r.D_x).toFixed(3) + ")</span>";
+  }
+
+  function reducedMotion() {
+    return !!(window.matchMedia && window.matchMedia("(prefers-reduced-motion: reduce)").matches);
+  }
+  function autoplay() {  // play=1 in the link, unless the reader asked for reduced motion
+    if (!state.play) return;
+    if (reducedMotion()) {
+      model("support_player_readout").text += " · autoplay off (reduced motion)";
+      return;
+    }
+    model("support_player_play").active = true;
+  }
+
+  // ------------------------------------------------------------ drawing: Fig. 11
+  var polarAxes = {}, polarKey = null;
+
+  function polarValues(sweep, key) {
+    return sweep.F_mean_x.map(function (_, i) {
+      if (key === "FTx") return sweep.F_mean_x[i] / CONFIG.mu0;
+      if (key === "FTy") return sweep.F_mean_y[i] / CONFIG.mu0;
+      return sweep.D_y[i] / sweep.D_x[i];
+    });
+  }
+
+  function drawPolar(sweep, ms) {
+    if (sweep.error) { model("polar-status").text = "<b>Not computed:</b> " + esc(sweep.error); return; }
+    Object.keys(CONFIG.polar).forEach(function (key) {
+      var res = VIEWS.polarData(key, CONFIG.polar[key][2], sweep.theta0, polarValues(sweep, key));
+      polarAxes[key] = res[1];
+      setData(res[0]);
+    });
+    var failed = sweep.success.filter(function (ok) { return !ok; }).length;
+    model("polar-status").text = sweep.theta0.length + " orientations computed in " + ms +
+      " ms in the browser" + (failed ? "; <b>" + failed + " contacts did not finish</b>" : "");
+    explorer.polar = sweep;
+    markPolar();
+    explorer.polarDrawn += 1;
+    document.documentElement.setAttribute("data-polar", String(explorer.polarDrawn));
+  }
+
+  function markPolar() {  // the current theta0 and its values (this contact's)
+    var r = explorer.result;
+    if (!r || !explorer.polar) return;
+    var now = {FTx: r.F_mean_x / CONFIG.mu0, FTy: r.F_mean_y / CONFIG.mu0, DyDx: r.D_y / r.D_x};
+    Object.keys(CONFIG.polar).forEach(function (key) {
+      if (polarAxes[key]) setData(VIEWS.polarNow(key, r.params.theta0, now[key], polarAxes[key]));
+    });
+  }
+
+  // ------------------------------------------------------------ drawing: Fig. 5
+  var mapQuantity = "5a";
+  function nearestLoad(F) {
+    var best = null;
+    CONFIG.shipped_loads.forEach(function (L) {
+      if (best === null || Math.abs(Math.log(L / F)) < Math.abs(Math.log(best / F))) best = L;
+    });
+    return best;
+  }
+  function loadLabel(L) { return KERNEL.formatG(L); }
+
+  function drawMap() {
+    var load = nearestLoad(state.F_N), m = CONFIG.maps.loads[loadLabel(load)];
+    var data = Object.assign({}, CONFIG.maps.cells, m.columns);
+    data.value = m.columns[CONFIG.maps.value[mapQuantity]];
+    source("regime_map").data = data;
+    var lohi = m.range[mapQuantity];
+    model("regime_map_colors").setv({low: lohi[0], high: lohi[1]});
+    figure("regime_map").title.text = CONFIG.map_titles[mapQuantity].replace(
+      /F_N = [0-9.]+/, "F_N = " + loadLabel(load));
+    model("map-note").text = "Uniform arrays (θ₀ uniform), self-consistent β, shipped with the " +
+      "model at F_N = " + CONFIG.shipped_loads.map(loadLabel).join(", ") + ". Shown: F_N = " +
+      loadLabel(load) + (Math.abs(load - state.F_N) > 1e-12 * load
+        ? ", the shipped load nearest to the current F_N = " + KERNEL.formatG(state.F_N, 3) : "") +
+      ". Click the map, or use the arrow keys on this tab (← → k_r, ↑ ↓ k_θ, one cell), " +
+      "to set the springs.";
+    source("regime_now").data = {k_r: [state.k_r], k_theta: [state.k_theta]};
+    document.documentElement.setAttribute("data-map", loadLabel(load) + "/" + mapQuantity);
+  }
+
+  // ------------------------------------------------------------ projector mode
+  function applyProjector() {
+    var on = state.projector;
+    CONFIG.projector.forEach(function (c) {
+      var m = doc.get_model_by_id(c[0]), attrs = {};
+      if (!m) return;
+      attrs[c[1]] = on ? c[3] : c[2];
+      m.setv(attrs);
+    });
+    document.documentElement.classList.toggle("projector", on);
   }
 
   // ------------------------------------------------------------ the API
-  function setState(partial, fromSlider) {
+  var lastSweep = null;
+  function compute() {
+    request(contactChannel, contactInput(state));
+    if (sweepKey(state) !== lastSweep) {
+      lastSweep = sweepKey(state);
+      request(sweepChannel, sweepInput(state));
+    }
+    drawMap();
+  }
+
+  function setState(partial, fromControl) {
     var changed = false;
     Object.keys(partial).forEach(function (k) {
-      if (KEYS.indexOf(k) < 0 && k !== "tab") throw new RangeError(k + " is not a setting; known: " + KEYS.join(", "));
       var v = partial[k];
-      if (k === "tab") { state.tab = String(v); return; }
-      if (!inRange(k, v)) {
-        throw new RangeError(k + "=" + v + " is not " + CONTROLS[k].expected);
+      if (k === "tab") {
+        if (CONFIG.offline_tabs.indexOf(v) < 0)
+          throw new RangeError("tab=" + v + " is not a tab of the offline explorer (one of " + CONFIG.offline_tabs.join(", ") + ")");
+        state.tab = v;
+        return;
       }
+      if (k === "projector") { state.projector = !!v; return; }
+      if (KEYS.indexOf(k) < 0) throw new RangeError(k + " is not a setting; known: " + KEYS.concat(["tab", "projector"]).join(", "));
+      if (!inRange(k, v)) throw new RangeError(k + "=" + v + " is not " + CONTROLS[k].expected);
       if (state[k] !== v) { state[k] = v; changed = true; }
     });
     history.replaceState(null, "", fragment(state));
-    if (!fromSlider) syncSliders();
-    if (changed || fromSlider) request();
+    if (!fromControl) syncControls();
+    if (changed) compute();
   }
 
   explorer.simulate = function (o) { return KERNEL.simulate(o); };
@@ -239,37 +424,83 @@
     if (!regime) throw new RangeError(name + " is not a regime; one of " + Object.keys(CONFIG.regimes).join(", "));
     setState({k_r: regime.k_r, k_theta: regime.k_theta}, false);
   };
+  function clampRound(key, v) {
+    var c = CONTROLS[key];
+    return Math.min(c.hi, Math.max(c.lo, Number(v.toPrecision(c.log ? 3 : 6))));
+  }
   explorer._slider = function (key, value) {  // the sliders' CustomJS callbacks
     if (syncing || !doc) return;
-    var c = CONTROLS[key];
-    var v = c.log ? Math.pow(10, value) : value;
-    v = Math.min(c.hi, Math.max(c.lo, Number(v.toPrecision(6))));
-    var partial = {};
-    partial[key] = v;
+    var c = CONTROLS[key], partial = {};
+    partial[key] = Math.min(c.hi, Math.max(c.lo, Number((c.log ? Math.pow(10, value) : value).toPrecision(6))));
     setState(partial, true);
+  };
+  explorer._tab = function (index) {
+    if (syncing || !doc) return;
+    setState({tab: CONFIG.offline_tabs[index]}, true);
+  };
+  explorer._projector = function (on) {
+    if (syncing || !doc) return;
+    setState({projector: on}, true);
+    applyProjector();
+  };
+  explorer._mapQuantity = function (q) { mapQuantity = q; if (doc) drawMap(); };
+  explorer._mapTap = function (x, y) {  // a click on the regime map: its k_r, k_theta
+    if (!doc || !isFinite(x) || !isFinite(y)) return;
+    setState({k_r: clampRound("k_r", x), k_theta: clampRound("k_theta", y)}, false);
+  };
+  explorer._polarTap = function (x, y) {  // a click on a polar diagram: its angle is theta0
+    if (!doc || (x === 0 && y === 0)) return;
+    var deg = Math.round((Math.atan2(y, x) * 180 / Math.PI + 360) % 360);
+    setState({theta0_deg: deg >= 360 ? 0 : deg}, false);
   };
   explorer.parseFragment = parseFragment;
   window.explorer = explorer;
+
+  /** Arrow keys on the map tab move the springs one cell of the shipped map's grid. */
+  function mapKeys(e) {
+    if (!doc || state.tab !== "map" || e.altKey || e.ctrlKey || e.metaKey) return;
+    var tag = (e.target && e.target.tagName) || "";
+    if (["INPUT", "SELECT", "TEXTAREA", "BUTTON"].indexOf(tag) >= 0) return;
+    var path = e.composedPath ? e.composedPath() : [];
+    if (path.some(function (el) {
+      return el && el.getAttribute && (el.getAttribute("role") === "slider" ||
+        el.getAttribute("role") === "tab" || (el.classList && el.classList.contains("noUi-handle")));
+    })) return;
+    var moves = {ArrowLeft: ["k_r", -1], ArrowRight: ["k_r", 1], ArrowDown: ["k_theta", -1], ArrowUp: ["k_theta", 1]};
+    var move = moves[e.key];
+    if (!move) return;
+    var k = CONFIG.maps.cells.k_r, n = Math.round(Math.sqrt(k.length));
+    var step = Math.pow(CONTROLS.k_r.hi / CONTROLS.k_r.lo, 1 / (n - 1)), partial = {};
+    partial[move[0]] = clampRound(move[0], state[move[0]] * Math.pow(step, move[1]));
+    e.preventDefault();
+    e.stopPropagation();  // not the player's keys: it is on another tab
+    setState(partial, false);
+  }
 
   function applyFragment() {
     var parsed = parseFragment(location.hash);
     state = parsed.state;
     showNotice(parsed.notices);
-    syncSliders();
+    syncControls();
     history.replaceState(null, "", fragment(state));
-    request();
+    compute();
   }
 
   function start() {
     doc = window.Bokeh.documents[0];
-    worker = startWorker();
+    doc.all_models.forEach(function (m) {
+      if (m.name) (byName[m.name] = byName[m.name] || []).push(m);
+    });
+    contactChannel.worker = startWorker(contactChannel);
+    sweepChannel.worker = startWorker(sweepChannel);
     applyFragment();
     window.addEventListener("hashchange", applyFragment);
+    window.addEventListener("keydown", mapKeys, true);
   }
 
   (function waitForBokeh() {  // the document is built after the page's scripts ran
     var B = window.Bokeh;
-    if (B && B.documents && B.documents.length && B.documents[0].get_model_by_name("orbit-source")) start();
+    if (B && B.documents && B.documents.length && B.documents[0].get_model_by_name("tabs")) start();
     else setTimeout(waitForBokeh, 5);
   })();
 }());

@@ -51,12 +51,19 @@ class Offline:
         self.page.wait_for_function(f"{DRAWN} >= 1")
 
     def data(self, name: str) -> dict:
+        """A data source's columns (figures may share a source's name)."""
         return self.page.evaluate(
-            f"(() => {{ const d = Bokeh.documents[0].get_model_by_name('{name}').data;"
-            " return Object.fromEntries(Object.entries(d).map(([k, v]) => [k, Array.from(v)])); })()")
+            f"(() => {{ const m = [...Bokeh.documents[0].all_models].find((m) => m.name === '{name}'"
+            " && m.data !== undefined && m.selected !== undefined);"
+            " return Object.fromEntries(Object.entries(m.data).map(([k, v]) => [k, Array.from(v)])); })()")
+
+    def model(self, name: str, attr: str):
+        return self.page.evaluate(
+            f"[...Bokeh.documents[0].all_models].find((m) => m.name === '{name}' && m.data === undefined"
+            f" && m.renderers === undefined).{attr}")
 
     def text(self, name: str) -> str:
-        return self.page.evaluate(f"Bokeh.documents[0].get_model_by_name('{name}').text")
+        return self.model(name, "text")
 
     def foreign_requests(self) -> list[str]:
         return [u for u in self.requests if not u.startswith("file:")]
@@ -71,21 +78,25 @@ def offline(browser, explorer_file):
 
 def test_opens_from_file_with_no_request_and_no_error(offline):
     offline.open()
-    orbit = offline.data("orbit-source")
-    assert len(orbit["x"]) > 100  # the orbit was computed in the page
+    orbit = offline.data("orbit")
+    assert len(orbit["x0"]) > 100  # the orbit was computed in the page
     assert offline.page.evaluate("JSON.stringify(explorer.state)") == (
-        '{"tab":"support","k_r":3,"k_theta":0.01,"F_N":1,"theta0_deg":90}')
+        '{"tab":"support","projector":false,"play":false,"k_r":3,"k_theta":0.01,"F_N":1,'
+        '"theta0_deg":90}')
     want = simulate_support(Params(k_r=3, k_theta=0.01)).F_mean[0]
     got = offline.page.evaluate("explorer.result.F_mean_x")
     assert got == pytest.approx(want, rel=1e-4)
-    assert "0.943" in offline.text("headline")  # F_T,x/(mu0 F_N) of the pendulum at 90 deg
+    assert "0.943" in offline.text("headline-number")  # F_T,x/(mu0 F_N), pendulum at 90 deg
+    # The dashboard's headline sentence for this state.
+    assert offline.text("headline").startswith(
+        "Friction is 5.7 % below a rigid surface (every support at θ₀ = 90°)")
     assert offline.foreign_requests() == []
     assert offline.errors == []
 
 
 def test_a_slider_key_press_changes_the_plotted_data(offline):
     offline.open()
-    before = offline.data("orbit-source")
+    before = offline.data("orbit")
     drawn = offline.page.evaluate(DRAWN)
     handle = offline.page.locator(".noUi-handle").nth(3)  # theta0, the fourth slider
     handle.focus()
@@ -94,21 +105,22 @@ def test_a_slider_key_press_changes_the_plotted_data(offline):
     offline.page.wait_for_function(f"{DRAWN} > {drawn} && explorer.state.theta0_deg === 85")
     offline.page.wait_for_function("!Bokeh.documents[0].get_model_by_name('status').text"
                                    ".startsWith('computing')")
-    after = offline.data("orbit-source")
-    assert after["x"] != before["x"]
+    after = offline.data("orbit")
+    assert after["x1"] != before["x1"]
     assert "theta0_deg=85" in offline.page.evaluate("location.hash")
     # What is drawn is the kernel's orbit for the new state.
     want = offline.page.evaluate(
         "Array.from(explorer.simulate({k_r: 3, k_theta: 0.01, F_N: 1, theta0: 85 * Math.PI / 180,"
-        " samples: 1500}).series.x)")
-    assert after["x"] == pytest.approx(want, abs=1e-12)
+        " samples: 400}).series.x)")
+    assert after["x1"] == pytest.approx(want[1:], abs=1e-12)
     assert offline.errors == []
 
 
 def test_a_link_opens_in_its_state(offline):
     offline.open("#k_r=0.03&k_theta=0.03&F_N=3&theta0_deg=120")
     state = offline.page.evaluate("explorer.state")
-    assert state == {"tab": "support", "k_r": 0.03, "k_theta": 0.03, "F_N": 3, "theta0_deg": 120}
+    assert state == {"tab": "support", "k_r": 0.03, "k_theta": 0.03, "F_N": 3, "theta0_deg": 120,
+                     "projector": False, "play": False}
     sliders = offline.page.evaluate(
         "['k_r', 'k_theta', 'F_N', 'theta0_deg'].map(k => "
         "Bokeh.documents[0].get_model_by_name('slider-' + k).value)")
@@ -131,8 +143,150 @@ def test_a_bad_link_gets_a_notice_and_the_defaults(offline):
     assert state["k_r"] == DEFAULTS["k_r"] and state["F_N"] == DEFAULTS["F_N"]
     assert state["theta0_deg"] == 45  # the good value is kept
     notice = offline.text("notice")
-    for part in ("k_r=banana", "F_N=1e9", "the array tab is not in the offline explorer yet",
+    for part in ("k_r=banana", "F_N=1e9", "the array tab is not in the offline explorer",
                  "colour is not a setting"):
         assert part in notice, (part, notice)
-    assert len(offline.data("orbit-source")["x"]) > 100  # never a blank page
+    assert len(offline.data("orbit")["x0"]) > 100  # never a blank page
     assert offline.errors == []
+
+
+POLAR = "Number(document.documentElement.getAttribute('data-polar') || 0)"
+
+
+def test_friction_histories_and_energy_bars_are_the_kernels(offline):
+    offline.open("#k_r=0.03&k_theta=0.03&F_N=1&theta0_deg=90")
+    series = offline.page.evaluate(
+        "(() => { const s = explorer.simulate({k_r: 0.03, k_theta: 0.03, F_N: 1,"
+        " theta0: Math.PI / 2, samples: 400}).series;"
+        " return Object.fromEntries(['tau', 'F_x', 'F_y', 'W', 'D_x'].map((k) => [k, Array.from(s[k])])); })()")
+    forces = offline.data("forces")  # Fig. 7
+    assert forces["F_x"] == pytest.approx(series["F_x"], abs=1e-12)
+    assert forces["F_y"] == pytest.approx(series["F_y"], abs=1e-12)
+    # The energy bars follow the player: step to the last frame, the bars are W and its
+    # split at tau_out (Eq. 12: W = D_x + D_y + U_el + K).
+    offline.page.locator("button", has_text="Step ▶").click()
+    offline.page.keyboard.press("Home")
+    for _ in range(3):
+        offline.page.keyboard.press("ArrowLeft")  # from frame 0 back: stays at the start
+    offline.page.evaluate("[...Bokeh.documents[0].all_models].find((m) => m.name ==="
+                          " 'support_player_slider').value = 299")
+    offline.page.wait_for_function("[...Bokeh.documents[0].all_models].find((m) => m.name ==="
+                                   " 'support_player_frame').value === 299")
+    bars = offline.data("energy_live_bars")
+    result = offline.page.evaluate("explorer.result")
+    assert bars["top"][0] == pytest.approx(result["W"], rel=1e-9)  # W so far, at tau_out
+    assert bars["top"][-1] == pytest.approx(result["W"] - result["energy_residual"], rel=1e-6)
+    assert "τ = " in offline.text("energy_live_readout")
+    assert offline.errors == []
+
+
+def test_the_player_plays_steps_and_answers_keys(offline):
+    offline.open()
+    frame = ("[...Bokeh.documents[0].all_models].find((m) => m.name === 'support_player_frame')"
+             ".value")
+    mass = offline.data("scene_mass")["x"]
+    offline.page.locator("button", has_text="Step ▶").click()
+    offline.page.wait_for_function(f"{frame} === 1")
+    assert offline.data("scene_mass")["x"] != mass  # the support moved along its orbit
+    offline.page.locator("body").click(position={"x": 5, "y": 5})
+    offline.page.keyboard.press("ArrowRight")
+    offline.page.wait_for_function(f"{frame} === 2")
+    offline.page.keyboard.press(" ")  # play
+    offline.page.wait_for_function(f"{frame} > 10")
+    offline.page.keyboard.press(" ")  # pause
+    stopped = offline.page.evaluate(frame)
+    offline.page.wait_for_timeout(300)
+    assert offline.page.evaluate(frame) == stopped
+    assert offline.errors == []
+
+
+@pytest.mark.parametrize("motion", ["reduce", "no-preference"])
+def test_play_in_a_link_respects_reduced_motion(browser, explorer_file, motion):
+    context = browser.new_context(viewport=VIEWPORT, reduced_motion=motion)
+    try:
+        page = context.new_page()
+        page.goto(explorer_file.as_uri() + "#play=1")
+        page.wait_for_function(f"{DRAWN} >= 1")
+        playing = page.evaluate("[...Bokeh.documents[0].all_models].find((m) => m.name ==="
+                                " 'support_player_play').active")
+        assert playing is (motion == "no-preference")
+    finally:
+        context.close()
+
+
+def test_polar_diagrams_are_computed_in_the_page(offline):
+    offline.open("#k_r=0.03&k_theta=0.3&F_N=1&theta0_deg=90&tab=polar")
+    offline.page.wait_for_function(f"{POLAR} >= 1")
+    assert offline.model("tabs", "active") == 1
+    curve = offline.data("polar_FTx")
+    assert len(curve["value"]) == 2 * 72 + 1
+    # The sweep's first orientation against Python's fixed array there (beta = 1).
+    from model.fixed import orientation_sweep
+    from app.worker import POLAR_THETA0
+    p = Params(k_r=0.03, k_theta=0.3, F_N=1)
+    sweep = orientation_sweep(p, POLAR_THETA0[[0, 40]], beta=1.0)
+    assert curve["value"][0] == pytest.approx(sweep.FTx_over_mu0FN[0], rel=1e-4)
+    assert curve["value"][40] == pytest.approx(sweep.FTx_over_mu0FN[1], rel=1e-4)
+    assert offline.data("polar_DyDx")["value"][40] == pytest.approx(sweep.Dy_over_Dx[1], rel=1e-3)
+    assert "72 orientations computed" in offline.text("polar-status")
+    # A click on a diagram sets theta0 to its angle.
+    offline.page.evaluate("explorer._polarTap(0, -1)")
+    assert offline.page.evaluate("explorer.state.theta0_deg") == 270
+    assert offline.errors == []
+
+
+def test_the_regime_map_is_the_shipped_one_and_sets_the_springs(offline):
+    offline.open("#F_N=3&tab=map")
+    from model.shipped_map import load_regime_map
+    m = load_regime_map(F_N=3)
+    cells = offline.data("regime_map")
+    assert cells["value"][:24] == pytest.approx(list(m.FTx_over_mu0FN[0]), rel=1e-5)
+    assert "F_N = 3" in offline.page.evaluate(
+        "[...Bokeh.documents[0].all_models].find((m) => m.name === 'regime_map'"
+        " && m.renderers !== undefined).title.text")
+    # A click on the map sets both springs; the marker follows.
+    drawn = offline.page.evaluate(DRAWN)
+    offline.page.evaluate("explorer._mapTap(0.1, 1.0)")
+    offline.page.wait_for_function(f"{DRAWN} > {drawn}")
+    assert offline.page.evaluate("[explorer.state.k_r, explorer.state.k_theta]") == [0.1, 1]
+    assert offline.data("regime_now") == {"k_r": [0.1], "k_theta": [1]}
+    # The keyboard does the same, one cell of the 24 x 24 grid per key.
+    offline.page.locator("body").click(position={"x": 5, "y": 5})
+    offline.page.keyboard.press("ArrowRight")
+    offline.page.keyboard.press("ArrowDown")
+    step = (3 / 0.01) ** (1 / 23)
+    k_r, k_theta = offline.page.evaluate("[explorer.state.k_r, explorer.state.k_theta]")
+    assert k_r == pytest.approx(0.1 * step, rel=1e-2) and k_theta == pytest.approx(1 / step, rel=1e-2)
+    assert "k_r=" in offline.page.evaluate("location.hash")
+    assert offline.errors == []
+
+
+def test_projector_mode_from_the_link_and_the_toggle(offline):
+    offline.open("#projector=1")
+    size = ("[...Bokeh.documents[0].all_models].find((m) => m.name === 'forces'"
+            " && m.renderers !== undefined).title.text_font_size")
+    assert offline.page.evaluate(size) == "18px"  # app.figures.common.style(fig, True)
+    assert offline.model("projector", "active") is True
+    offline.page.locator("button", has_text="Projector mode").click()
+    offline.page.wait_for_function(f"{size} === '12px'")
+    assert "projector" not in offline.page.evaluate("location.hash")
+    assert offline.errors == []
+
+
+def test_a_phone_gets_the_page_without_horizontal_scroll(browser, explorer_file):
+    context = browser.new_context(viewport={"width": 390, "height": 844}, is_mobile=True,
+                                  has_touch=True, device_scale_factor=3)
+    try:
+        page = context.new_page()
+        errors = []
+        page.on("pageerror", lambda e: errors.append(str(e)))
+        page.goto(explorer_file.as_uri())
+        page.wait_for_function(f"{DRAWN} >= 1")
+        assert page.evaluate("document.documentElement.scrollWidth") <= 390
+        # The figures are stacked, each within the screen.
+        right = page.evaluate("Math.max(...[...document.querySelectorAll('.bk-Figure')]"
+                              ".map((e) => e.getBoundingClientRect().right))")
+        assert right <= 390
+        assert errors == []
+    finally:
+        context.close()
