@@ -11,6 +11,7 @@ from model.controls import CONTROLS
 
 
 def test_pack_writes_one_self_contained_file_within_the_bound(tmp_path, capsys):
+    import panel  # noqa: F401  -- registers models whose scripts Bokeh would add by address
     out = tmp_path / "explorer.html"
     assert main(["pack", "--out", str(out)]) == 0
     assert "wrote" in capsys.readouterr().out

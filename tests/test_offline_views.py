@@ -173,8 +173,10 @@ def test_projector_styles_are_the_dashboards_switch():
     changes = offline_figures.projector_styles(list(figs.values()))
     fig = figs["FTx"]
     title = [c for c in changes if c[0] == fig.title.id and c[1] == "text_font_size"]
-    assert title == [[fig.title.id, "text_font_size", "12px", "18px"]]
-    assert fig.title.text_font_size == "12px"  # left in the screen look
+    from app.figures.common import MIN_TEXT_PX, PROJECTOR_SCALE
+    screen, projector = MIN_TEXT_PX + 1, round((MIN_TEXT_PX + 1) * PROJECTOR_SCALE)
+    assert title == [[fig.title.id, "text_font_size", f"{screen}px", f"{projector}px"]]
+    assert fig.title.text_font_size == f"{screen}px"  # left in the screen look
     widths = [c for c in changes if c[1] == "line_width"]
     assert widths and all(float(c[3]["value"] if isinstance(c[3], dict) else c[3]) >
                           float(c[2]["value"] if isinstance(c[2], dict) else c[2]) for c in widths)

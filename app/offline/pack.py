@@ -196,6 +196,19 @@ def _script(element_id: str, source: str, kind: str = "") -> str:
     return f'<script id="{element_id}"{type_attr}>\n{source}\n</script>\n'
 
 
+#: A script or stylesheet loaded by address. Bokeh's inline resources add one for every
+#: ``__javascript__``/``__css__`` of every model class registered in the process (Panel's
+#: models once Panel is imported, e.g. es-module-shims), whether the page uses them or
+#: not; this page uses Bokeh's own models only and loads nothing.
+_FETCH = re.compile(r'<script\b[^>]*\bsrc="[^"]*"[^>]*>\s*</script>\s*'
+                    r'|<link\b[^>]*\brel="stylesheet"[^>]*>\s*')
+
+
+def _without_fetches(html: str) -> str:
+    """``html`` without the script and stylesheet tags that load by address."""
+    return _FETCH.sub("", html)
+
+
 def page_html() -> str:
     """The whole page: Bokeh's document with BokehJS inlined, the kernel and the page code."""
     cfg = config()
@@ -208,7 +221,7 @@ def page_html() -> str:
     doc.add_root(_layout(cfg, figs, polar, regime_map))
     doc.title = TITLE
     figs["player"].install(doc)  # the player's keyboard shortcuts (no autoplay)
-    html = file_html(doc, resources=INLINE, title=TITLE)
+    html = _without_fetches(file_html(doc, resources=INLINE, title=TITLE))
     here = resources.files(__package__)
     extra = (_script("mp-config", json.dumps(cfg).replace("</", "<\\/"), "application/json")
              + "".join(_script(f"mp-{name}", (here / f"{name}.js").read_text(encoding="utf-8"))

@@ -265,10 +265,12 @@ def test_projector_mode_from_the_link_and_the_toggle(offline):
     offline.open("#projector=1")
     size = ("[...Bokeh.documents[0].all_models].find((m) => m.name === 'forces'"
             " && m.renderers !== undefined).title.text_font_size")
-    assert offline.page.evaluate(size) == "18px"  # app.figures.common.style(fig, True)
+    from app.figures.common import MIN_TEXT_PX, PROJECTOR_SCALE
+    # app.figures.common.style(fig, True): the title's projector size
+    assert offline.page.evaluate(size) == f"{round((MIN_TEXT_PX + 1) * PROJECTOR_SCALE)}px"
     assert offline.model("projector", "active") is True
     offline.page.locator("button", has_text="Projector mode").click()
-    offline.page.wait_for_function(f"{size} === '12px'")
+    offline.page.wait_for_function(f"{size} === '{MIN_TEXT_PX + 1}px'")
     assert "projector" not in offline.page.evaluate("location.hash")
     assert offline.errors == []
 
