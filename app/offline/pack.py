@@ -18,8 +18,8 @@ defined once, in Python.
 from __future__ import annotations
 
 import json
-import re
 import math
+import re
 from importlib import resources
 from pathlib import Path
 
