@@ -27,6 +27,10 @@ log = logging.getLogger(__name__)
 
 #: The Design tab's results computed while the tab is on screen (``SessionResults.show``).
 DESIGN_RESULTS = ("design_point", "design_array", "design_polar")
+#: What the headline above the tabs reads (``app.views.readouts.HeadlineView``): the fixed
+#: array at theta0 and the uniform array. It stands above every tab, so these are needed
+#: whichever tab is on screen (a tab's own list may leave them out).
+HEADLINE_RESULTS = ("support", "uniform")
 
 
 def optimum_family(state) -> str:
@@ -365,8 +369,9 @@ class SessionResults(PinnedResults):
 
     # ------------------------------------------------------------------ control
     def show(self, names) -> None:
-        """Compute the results in ``names`` (on screen) and only those of the optional ones."""
-        names = set(names)
+        """Compute the results in ``names`` (on screen) and only those of the optional ones;
+        the headline's (``HEADLINE_RESULTS``) always."""
+        names = set(names) | set(HEADLINE_RESULTS)
         for name in ("polar", "load", "load_regimes", "uniform", "regime_map", "array",
                      *DESIGN_RESULTS):
             self.slots[name].set_needed(name in names)

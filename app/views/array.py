@@ -18,6 +18,7 @@ from ..figures.array_scene import array_scene
 from ..figures.player import browser_player
 from ..results import SessionResults
 from ..state import ExplorerState
+from ..texts import FELT_WORDS
 from .export import AnimationExport
 
 
@@ -65,7 +66,8 @@ class ArrayView(pn.viewable.Viewer):
             f"{motion.n_supports} supports on a {motion.n_rows} × {motion.n_cols} grid, "
             f"θ₀ {'uniform' if self.state.orientation == 'uniform' else 'fixed'}; "
             f"array model: N_c/N_c0 = {m['Nc_over_Nc0']:.3g}, "
-            f"F_T,x/(μ₀F_N) = {m['FTx_over_mu0FN_duration']:.3g} (dashed lines)."
+            f"the slab feels F_T,x/(μ₀F_N) = {m['FTx_over_mu0FN_duration']:.3g} "
+            f"({FELT_WORDS}; dashed lines)."
             + ("" if motion.success else f" ⚠ {motion.message}"))
 
     @param.depends("results.busy", "results.errors", watch=True)
