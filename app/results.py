@@ -44,6 +44,13 @@ def optimum_family(state) -> str:
     return family if family in ("fixed", "pair", "vonmises") else "pair"
 
 
+def array_params(state) -> "worker.Params":
+    """The ``Params`` of the Array tab's ``array_motion`` for ``state`` (its own beta
+    solved inside; theta0 plays no part in a uniform array)."""
+    p = state.params.replace(beta=1.0)
+    return p.replace(theta0=math.pi / 2) if state.orientation == "uniform" else p
+
+
 #: The Fig. 6 curves of the paper's regimes (with the current springs' curve).
 LOAD_REGIMES = worker.LOAD_REGIMES
 
@@ -303,9 +310,7 @@ class SessionResults(PinnedResults):
 
     def _array_request(self) -> Request:
         s = self.state
-        p = s.params.replace(beta=1.0)
-        if s.orientation == "uniform":  # theta0 plays no part
-            p = p.replace(theta0=math.pi / 2)
+        p = array_params(s)
         return Request("background", ("array", p, s.orientation), worker.compute_array_motion,
                        (p, s.orientation), self.BUDGET_S["array"])
 

@@ -12,7 +12,7 @@ from bokeh.events import Tap
 from bokeh.palettes import Cividis256, Viridis256
 
 from .. import figures as F
-from ..figures.arrays import AVERAGE_COLUMNS, MAP_QUANTITIES
+from ..figures.arrays import AVERAGE_COLUMNS, map_title
 from ..figures.pinned import add_pinned, load_curve_A, show_pinned
 from ..results import SessionResults
 from ..state import ExplorerState
@@ -94,7 +94,7 @@ class RegimeMapView(pn.viewable.Viewer):
         F.update(self._sources, data)
         lo, hi = F.value_range(data["regime_map"]["value"])
         self._mapper.update(low=lo, high=hi, palette=Viridis256 if q == "5a" else Cividis256)
-        self.figure.title.text = MAP_QUANTITIES[q][1]
+        self.figure.title.text = map_title(q, self.map, self.state.average)
 
     @param.depends("state.projector", watch=True)
     def _restyle(self) -> None:
