@@ -19,7 +19,8 @@ from ..figures.player import browser_player
 from ..results import SessionResults
 from ..state import ExplorerState
 from ..texts import FELT_WORDS
-from .export import AnimationExport
+from ..export import array_csv
+from .export import AnimationExport, ResultDownload, svg_button
 
 
 class ArrayView(pn.viewable.Viewer):
@@ -43,6 +44,10 @@ class ArrayView(pn.viewable.Viewer):
         self.pane = pn.pane.Bokeh(None, css_classes=["array-view"], margin=(0, 5),
                                   sizing_mode="stretch_width")
         self.export = AnimationExport(state=self.state, results=self.results, what="array")
+        self.csv = ResultDownload(lambda: array_csv(self.results.array), "array.csv", "array",
+                                  results=self.results, name="array", label="Array CSV")
+        self.svg = svg_button(["array_top", "array_live_panel"], css="array-svg",
+                              label="Figures (SVG)")
         self._draw()
         self._on_busy()
 
@@ -82,5 +87,6 @@ class ArrayView(pn.viewable.Viewer):
 
     def __panel__(self):
         return pn.Column(self.toggle, self.status, self.pane, self.export,
+                         pn.Row(self.csv, self.svg, margin=0, sizing_mode="stretch_width"),
                          sizing_mode="stretch_width",
                          css_classes=["array-tab"])

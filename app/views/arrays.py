@@ -16,7 +16,9 @@ from ..figures.arrays import AVERAGE_COLUMNS, map_title
 from ..figures.pinned import add_pinned, load_curve_A, show_pinned
 from ..results import SessionResults
 from ..state import ExplorerState
+from ..export import load_csv, map_csv
 from ..worker import LOAD_F_N, UNIFORM_TOL
+from .export import ResultDownload, svg_button
 from .layout import grid_css
 
 #: One figure beside a column of text (narrower in projector mode): the figure takes what
@@ -49,6 +51,10 @@ class RegimeMapView(pn.viewable.Viewer):
         F.style(self.figure, state.projector)
         self.info = pn.pane.Markdown("", sizing_mode="stretch_width",
                                      styles={"font-size": "0.92em"}, css_classes=["map-info"])
+        self.csv = ResultDownload(lambda: map_csv(self.results.regime_map), "regime_map.csv",
+                                  "map", results=self.results, name="regime_map",
+                                  label="Map CSV")
+        self.svg = svg_button(["regime_map"], css="map-svg")
         self._describe()
 
     def _on_tap(self, event) -> None:
@@ -104,7 +110,9 @@ class RegimeMapView(pn.viewable.Viewer):
         return pn.Column(
             pn.pane.Bokeh(self.figure, sizing_mode="stretch_both",
                           css_classes=["figure", "figure-regime_map"]),
-            pn.Column(self.toggle, self.info, css_classes=["side-column"], margin=0),
+            pn.Column(self.toggle, self.info, pn.Row(self.csv, self.svg, margin=0,
+                                                     sizing_mode="stretch_width"),
+                      css_classes=["side-column"], margin=0),
             css_classes=["map-view"], margin=0, sizing_mode="stretch_both",
             stylesheets=[FIGURE_AND_TEXT])
 
@@ -127,6 +135,10 @@ class LoadView(pn.viewable.Viewer):
         self.pane = pn.pane.Bokeh(self.figure, sizing_mode="stretch_both",
                                   css_classes=["figure", "figure-load"])
         F.style(self.figure, self.state.projector)
+        self.csv = ResultDownload(lambda: load_csv(self.results.load), "load_curves.csv",
+                                  "load", results=self.results, name="load",
+                                  label="Load curves CSV")
+        self.svg = svg_button(["load"], css="load-svg")
         self._redraw()
 
     @property
@@ -184,8 +196,11 @@ class LoadView(pn.viewable.Viewer):
             "Uniform arrays (θ₀ uniform on [0°, 360°)) against the normal load (Fig. 6), "
             f"at F_N = {', '.join(f'{f:.2g}' for f in LOAD_F_N)}. "
             "Coloured lines: the paper's four regimes; black: the current k_r, k_θ; the "
-            "marker: the current F_N (the readout of the One support tab).",
+            "marker: the current F_N. The curves show the average chosen under "
+            "Advanced options (the headline gives the duration-weighted one, the force the "
+            "slab feels).",
             sizing_mode="stretch_width", styles={"font-size": "0.92em"}),
+            pn.Row(self.csv, self.svg, margin=0, sizing_mode="stretch_width"),
             css_classes=["side-column"], margin=0),
             css_classes=["load-view"], margin=0, sizing_mode="stretch_both",
             stylesheets=[FIGURE_AND_TEXT])
