@@ -2,9 +2,6 @@
 the load curves and the array, read back equal to what the tabs draw; a CSV button that
 is disabled and says "computing…" until its result exists (never a one-line "being
 computed" file); SVG buttons on every figure view."""
-import concurrent.futures as cf
-import math
-
 import numpy as np
 import pytest
 
@@ -14,25 +11,6 @@ from app.export import array_csv, load_csv, map_csv
 from app.state import ExplorerState
 from fakes import InProcessPool
 from model import csvfile
-
-
-class HeldPool(InProcessPool):
-    """Runs nothing until ``release()``: results stay "being computed" meanwhile."""
-
-    def __init__(self):
-        super().__init__()
-        self.held = []
-
-    def submit(self, lane, key, fn, *args, **options):
-        self.calls.append(fn.__name__)
-        future = cf.Future()
-        self.held.append((future, fn, args))
-        return future
-
-    def release(self):
-        held, self.held = self.held, []
-        for future, fn, args in held:
-            future.set_result(fn(*args))
 
 
 @pytest.fixture
@@ -82,32 +60,30 @@ def test_the_array_csv_is_the_tab_s_live_curves(tmp_path):
     assert header["model FTx_over_mu0FN_duration"] == motion.model["FTx_over_mu0FN_duration"]
 
 
-def test_a_csv_button_waits_for_its_result(monkeypatch):
+def test_a_csv_button_waits_for_its_result(pool):
     """Clicked before the sweep is there, the polar button gives no "being computed"
     file: it is disabled and says so until the sweep arrives (the issue's one-line file)."""
-    from app.views.export import ResultDownload
     from app.export import sweep_csv
+    from app.views.export import ResultDownload
 
-    pool = HeldPool()
-    monkeypatch.setattr(slot, "work_pool", lambda: pool)
-    monkeypatch.setattr(results_module, "work_pool", lambda: pool)
     state = ExplorerState()
     r = results_module.SessionResults(state)
     r.start()
     button = ResultDownload(lambda: sweep_csv(r.polar), "p.csv", "polar", results=r,
                             name="polar", label="Polar sweep CSV")
-    # Not on its tab: a button asks for it.
+    # Not on its tab and not computed: a button asks for it.
     assert button.compute.visible and not button.download.visible
-    button.compute.clicks += 1  # the compute button
+    r._set_busy("polar", True)  # on its way (a worker computes it)
     assert not button.compute.visible and button.download.visible
     assert button.download.disabled and button.download.label == "Polar sweep CSV: computing…"
     assert button._file().getvalue() == ""
-    pool.release()
+    r._set_busy("polar", False)
+    button.compute.clicks += 1  # here the pool computes it at once
+    assert "compute_polar" in pool.calls
     assert not button.download.disabled and button.download.label == "Polar sweep CSV"
     assert button._file().getvalue().startswith("# kind: orientation")
     state.k_r = 0.5  # a new sweep is needed: the old one is not offered as the new one
-    assert button.download.disabled or button.compute.visible
-    assert "k_r: 3.0" not in button._file().getvalue()
+    assert button.compute.visible and button._file().getvalue() == ""
 
 
 @pytest.mark.parametrize("tab, view", [("map", "regime_map"), ("load", "load"),
