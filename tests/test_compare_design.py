@@ -140,14 +140,6 @@ def test_a_state_pinned_with_the_support_only_has_the_default_design():
 
 # ------------------------------------------------------------------------------ results
 
-@pytest.fixture
-def pool(monkeypatch):
-    pool = InProcessPool()
-    monkeypatch.setattr(slot, "work_pool", lambda: pool)
-    monkeypatch.setattr(results_module, "work_pool", lambda: pool)
-    return pool
-
-
 DESIGN_CALLS = ("compute_design_point", "compute_design_array")
 
 

@@ -6,19 +6,10 @@ import numpy as np
 import pytest
 
 from app import results as results_module
-from app import slot, worker
+from app import worker
 from app.export import array_csv, load_csv, map_csv
 from app.state import ExplorerState
-from fakes import InProcessPool
 from model import csvfile
-
-
-@pytest.fixture
-def pool(monkeypatch):
-    pool = InProcessPool()
-    monkeypatch.setattr(slot, "work_pool", lambda: pool)
-    monkeypatch.setattr(results_module, "work_pool", lambda: pool)
-    return pool
 
 
 def _read(text, tmp_path):

@@ -70,18 +70,6 @@ def test_the_uniform_readout_shows_a_spinner_while_its_array_is_computed():
     assert not view.uniform_holder.loading
 
 
-@pytest.fixture
-def pool(monkeypatch):
-    from app import results as results_module
-    from app import slot
-    from fakes import InProcessPool
-
-    pool = InProcessPool()
-    monkeypatch.setattr(slot, "work_pool", lambda: pool)
-    monkeypatch.setattr(results_module, "work_pool", lambda: pool)
-    return pool
-
-
 @pytest.mark.parametrize("tab", ["support", "array", "polar", "map", "load", "equations"])
 def test_the_headline_settles_on_every_tab(pool, tab, monkeypatch):
     """The headline stands above every tab (but Design): its uniform array is computed

@@ -83,11 +83,13 @@ class ResultDownload(pn.viewable.Viewer):
     def __init__(self, writer, filename: str, css: str, **params):
         super().__init__(**params)
         self._writer = writer
-        common = dict(sizing_mode="stretch_width", margin=(2, 3), stylesheets=[BUTTON_CSS])
+        # Long captions ("… computing…") wrap rather than being cut off.
+        common = dict(sizing_mode="stretch_width", margin=(2, 3),
+                      stylesheets=[BUTTON_CSS, ".bk-btn { white-space: normal; }"])
         self.download = pn.widgets.FileDownload(
             callback=self._file, filename=filename, label=self.label,
             css_classes=[f"download-{css}"], **look("light"), **common)
-        self.compute = pn.widgets.Button(**caption(f"{self.label}: compute"), visible=False,
+        self.compute = pn.widgets.Button(**caption(f"Compute {self.label[:1].lower()}{self.label[1:]}"), visible=False,
                                          css_classes=[f"download-{css}-compute"],
                                          **look("light", "outline"), **common)
         self.compute.on_click(self._request)

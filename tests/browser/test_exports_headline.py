@@ -57,7 +57,7 @@ def test_the_map_downloads_as_csv_and_svg(page, page_log, app_url):
 
 def test_the_polar_csv_waits_for_its_sweep(page, page_log, app_url):
     pt.wait_for_app(page, f"{app_url}?tab=support&k_r=0.7")
-    compute = page.get_by_role("button", name="Polar sweep CSV: compute")
+    compute = page.get_by_role("button", name="Compute polar sweep CSV")
     compute.wait_for(state="visible")
     compute.click()
     pt.wait_for(page, lambda: page.get_by_role(
