@@ -27,9 +27,8 @@ log = logging.getLogger(__name__)
 
 #: The Design tab's results computed while the tab is on screen (``SessionResults.show``).
 DESIGN_RESULTS = ("design_point", "design_array", "design_polar")
-#: What the headline above the tabs reads (``app.views.readouts.HeadlineView``): the fixed
-#: array at theta0 and the uniform array. It stands above every tab, so these are needed
-#: whichever tab is on screen (a tab's own list may leave them out).
+#: What the headline above every tab reads (``app.views.readouts.HeadlineView``): needed
+#: whichever tab is on screen, though a tab's own list may leave them out.
 HEADLINE_RESULTS = ("support", "uniform")
 
 
@@ -42,13 +41,6 @@ def optimum_family(state) -> str:
     if sideways and family in ("pair", "uniform"):
         return "fixed"
     return family if family in ("fixed", "pair", "vonmises") else "pair"
-
-
-def array_params(state) -> "worker.Params":
-    """The ``Params`` of the Array tab's ``array_motion`` for ``state`` (its own beta
-    solved inside; theta0 plays no part in a uniform array)."""
-    p = state.params.replace(beta=1.0)
-    return p.replace(theta0=math.pi / 2) if state.orientation == "uniform" else p
 
 
 #: The Fig. 6 curves of the paper's regimes (with the current springs' curve).
@@ -309,8 +301,7 @@ class SessionResults(PinnedResults):
                        self.BUDGET_S["regime_map"], then=fine)
 
     def _array_request(self) -> Request:
-        s = self.state
-        p = array_params(s)
+        s, p = self.state, worker.array_params(self.state)
         return Request("background", ("array", p, s.orientation), worker.compute_array_motion,
                        (p, s.orientation), self.BUDGET_S["array"])
 
@@ -374,8 +365,7 @@ class SessionResults(PinnedResults):
 
     # ------------------------------------------------------------------ control
     def show(self, names) -> None:
-        """Compute the results in ``names`` (on screen) and only those of the optional ones;
-        the headline's (``HEADLINE_RESULTS``) always."""
+        """Compute the results in ``names`` (on screen) and the headline's, no other."""
         names = set(names) | set(HEADLINE_RESULTS)
         for name in ("polar", "load", "load_regimes", "uniform", "regime_map", "array",
                      *DESIGN_RESULTS):

@@ -14,7 +14,7 @@ from model.cli.snippet import params_source, source
 
 from . import worker
 from .figures.arrays import AVERAGE_COLUMNS, map_column, map_title
-from .results import array_params
+from .worker import array_params
 from .texts import AVERAGE_NAMES, FELT_AVERAGE
 
 #: tab -> (extra imports, the block's writer); other tabs show the support's snippet.

@@ -13,7 +13,7 @@ import pytest
 
 from app import worker
 from app.figures.arrays import map_column
-from app.results import array_params
+from app.worker import array_params
 from app.snippet import view_as_python
 from app.state import ExplorerState
 
