@@ -28,6 +28,12 @@ import numpy as np
 from model import Params, REGIMES, simulate_support
 from model.array_motion import ORIENTATIONS, array_motion
 
+from .figures.array_scene import SLAB_FILL, direction_palette, slab_half_width, view_x
+from .figures.common import BLUE, GREEN, GREY, VERMILION
+from .figures.histories import ENERGY_COLORS, ENERGY_LABELS, ENERGY_TERMS
+from .figures.scene import FORCE_COLOR, SLAB_COLOR, VREL_COLOR
+from .frame_fit import fit_layout
+
 __all__ = ["export_animation", "animation_bytes", "ExportResult", "WHAT", "FORMATS",
            "FRAMES_RANGE", "SIZE_RANGE", "FPS_RANGE", "check_request"]
 
@@ -38,10 +44,12 @@ SIZE_RANGE = ((160, 3840), (120, 2160))
 FPS_RANGE = (1, 60)
 MIME = {"gif": "image/gif", "mp4": "video/mp4"}
 _DPI = 100
-_BLUE, _ORANGE, _GREEN, _VERMILION, _PURPLE, _GREY = ("#0072B2", "#E69F00", "#009E73",
-                                                       "#D55E00", "#CC79A7", "#777777")
-_ENERGY = (("D_x", "D_x (along x)", _BLUE), ("D_y", "D_y (transverse)", _VERMILION),
-           ("U_el", "U_el (stored)", _GREEN), ("K", "K (kinetic)", _PURPLE))
+# The page's colours (``app.figures``): the same quantity has the same colour on the page
+# and in the file.
+_BLUE, _GREEN, _GREY = BLUE, GREEN, GREY
+_FORCE, _VREL, _SLAB, _MASS = FORCE_COLOR, VREL_COLOR, SLAB_COLOR, VERMILION
+_FTX = VERMILION  # F_T,x/(mu0 F_N) on the array's panel, as on the page
+_ENERGY = tuple(zip(ENERGY_TERMS, ENERGY_LABELS, ENERGY_COLORS))
 
 
 @dataclass(frozen=True)
@@ -103,21 +111,11 @@ def export_animation(what: str, fmt: str, path, params: Params, frames: int = 12
     path = Path(path)
     if not path.parent.is_dir():
         raise ValueError(f"out={str(path)!r}: the folder {str(path.parent)!r} does not exist")
-    # A figure with its own Agg canvas: no pyplot, no global backend, safe in a server.
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    if what == "support":
-        drawer, note = _SupportDrawer(params, frames), ""
-    else:
-        drawer = _ArrayDrawer(params, frames, orientation, n_supports)
-        note = "" if drawer.motion.success else drawer.motion.message
-    if drawer.failed:
+    drawer, fig = frame_figure(what, params, frames, size, orientation, n_supports)
+    note = "" if what == "support" or drawer.motion.success else drawer.motion.message
+    if fig is None:
         return ExportResult(False, drawer.failed, None, what, fmt, 0, size, fps,
                             time.perf_counter() - start)
-    fig = Figure(figsize=(size[0] / _DPI, size[1] / _DPI), dpi=_DPI)
-    FigureCanvasAgg(fig)
-    drawer.setup(fig)
     writer = _writer(fmt, fps)
     with writer.saving(fig, str(path), dpi=_DPI):
         for i in range(frames):
@@ -127,6 +125,26 @@ def export_animation(what: str, fmt: str, path, params: Params, frames: int = 12
     return ExportResult(True, message + (f"; {note}" if note else ""), str(path), what, fmt,
                         frames, size, fps, time.perf_counter() - start,
                         stats={"bytes": path.stat().st_size})
+
+
+def frame_figure(what: str, params: Params, frames: int, size, orientation: str = "uniform",
+                 n_supports: int = 100):
+    """(drawer, figure) of the animation, laid out (``fit_layout``) and showing its last
+    frame; the figure is None when the model gave nothing to draw (``drawer.failed``)."""
+    # A figure with its own Agg canvas: no pyplot, no global backend, safe in a server.
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    drawer = (_SupportDrawer(params, frames) if what == "support"
+              else _ArrayDrawer(params, frames, orientation, n_supports))
+    if drawer.failed:
+        return drawer, None
+    fig = Figure(figsize=(size[0] / _DPI, size[1] / _DPI), dpi=_DPI, layout="constrained")
+    FigureCanvasAgg(fig)
+    drawer.setup(fig)
+    drawer.draw(frames - 1)  # the widest texts (the clock) in place for the layout
+    fit_layout(fig)
+    return drawer, fig
 
 
 def animation_bytes(what: str, fmt: str, params: Params, **kwargs) -> tuple[bytes, str, ExportResult]:
@@ -178,11 +196,10 @@ class _SupportDrawer:
 
     def setup(self, fig):
         p, d = self.params, self.d
-        gs = fig.add_gridspec(1, 2, width_ratios=(1.5, 1), wspace=0.28, left=0.07, right=0.97,
-                              bottom=0.2, top=0.88)
+        gs = fig.add_gridspec(1, 2, width_ratios=(1.5, 1))
         ax = self.ax = fig.add_subplot(gs[0])
         ex = fig.add_subplot(gs[1])
-        fig.suptitle(f"One support, top view · {_title(p)} · θ₀ = {math.degrees(p.theta0):.0f}°",
+        fig.suptitle(f"One support, top view\n{_title(p)} · θ₀ = {math.degrees(p.theta0):.0f}°",
                      fontsize=11)
         x, y = self.path[1], self.path[2]
         lo = min(x.min(), -1.0) - 0.6, min(y.min(), -1.0) - 0.6
@@ -197,41 +214,41 @@ class _SupportDrawer:
         ax.text(0.02, 0.97, "TOP VIEW", transform=ax.transAxes, fontweight="bold", va="top",
                 bbox=dict(fc="white", ec="none", alpha=0.8))
         self.half, self.cy = half, cy
-        self.slab = ax.axvspan(0, 0, color="#9ecae1", alpha=0.35, zorder=0)
-        self.stripes = [ax.plot([], [], color=_BLUE, alpha=0.25, lw=1.5, zorder=0)[0]
+        self.slab = ax.axvspan(0, 0, color=SLAB_FILL, alpha=0.35, zorder=0)
+        self.stripes = [ax.plot([], [], color=_SLAB, alpha=0.25, lw=1.5, zorder=0)[0]
                         for _ in range(int(4 * half + p.L0) + 4)]
-        self.edges = [ax.axvline(0, color=_BLUE, lw=2.5) for _ in range(2)]
+        self.edges = [ax.axvline(0, color=_SLAB, lw=2.5) for _ in range(2)]
         ax.plot(np.cos(np.linspace(0, 2 * np.pi, 100)), np.sin(np.linspace(0, 2 * np.pi, 100)),
                 ":", color=_GREY, lw=1)
         ax.plot([0], [0], "s", color="black", mfc="white", ms=7, zorder=5)
         ax.plot([math.cos(p.theta0)], [math.sin(p.theta0)], "o", color="black", mfc="white",
                 ms=6, zorder=5)
-        self.trail, = ax.plot([], [], color=_PURPLE, lw=1.5)
+        self.trail, = ax.plot([], [], color=_GREY, lw=1.5)
         self.spring, = ax.plot([], [], color="black", lw=1.3)
-        self.mass, = ax.plot([], [], "o", color=_VERMILION, mec="black", ms=11, zorder=6)
+        self.mass, = ax.plot([], [], "o", color=_MASS, mec="black", ms=11, zorder=6)
         # The slab's velocity: a fixed arrow (a velocity, not a place) over the view.
-        ax.annotate("slab velocity V₀", xy=(0.95, 0.93), xytext=(0.62, 0.93),
-                    xycoords="axes fraction", textcoords="axes fraction", color=_BLUE,
+        ax.annotate("V₀", xy=(0.95, 0.93), xytext=(0.78, 0.93),
+                    xycoords="axes fraction", textcoords="axes fraction", color=_SLAB,
                     ha="right", va="center", fontsize=9,
-                    arrowprops=dict(arrowstyle="-|>", color=_BLUE, lw=2.5))
+                    arrowprops=dict(arrowstyle="-|>", color=_SLAB, lw=2.5))
         self.friction = ax.annotate("", xy=(0, 0), xytext=(0, 0),
-                                    arrowprops=dict(arrowstyle="-|>", color=_ORANGE, lw=2.5))
+                                    arrowprops=dict(arrowstyle="-|>", color=_FORCE, lw=2.5))
         self.relvel = ax.annotate("", xy=(0, 0), xytext=(0, 0),
-                                  arrowprops=dict(arrowstyle="-|>", color=_GREEN, lw=2))
-        ax.plot([], [], color=_BLUE, lw=2.5, label="slab velocity V₀ (slab shaded)")
-        ax.plot([], [], color=_ORANGE, lw=2.5, label="friction on the mass")
-        ax.plot([], [], color=_GREEN, lw=2, label="relative velocity v_R")
-        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=3, fontsize=8,
-                  frameon=False)
+                                  arrowprops=dict(arrowstyle="-|>", color=_VREL, lw=2))
+        keys = [ax.plot([], [], color=_SLAB, lw=2.5, label="slab velocity V₀ (slab shaded)")[0],
+                ax.plot([], [], color=_FORCE, lw=2.5, label="friction on the mass")[0],
+                ax.plot([], [], color=_VREL, lw=2, label="relative velocity v_R")[0]]
+        fig.legend(handles=keys, loc="outside lower center", ncol=3, fontsize=8,
+                   frameon=False)
         self.clock = ax.text(0.98, 0.03, "", transform=ax.transAxes, ha="right",
                              bbox=dict(fc="white", ec="none", alpha=0.8))
         # Energy bars: W so far beside its split.
-        ex.set_title("Where the slab's work goes (Eq. 12)", fontsize=10)
+        ex.set_title("The slab's work (Eq. 12)", fontsize=10)
         top = max(d["W"].max(), (d["D_x"] + d["D_y"] + d["U_el"] + d["K"]).max(), 1e-12)
         ex.set_ylim(min(0.0, min(d[k].min() for k in ("W", "D_x", "D_y", "U_el", "K"))),
                     1.15 * top)
         ex.set_xlim(-0.6, 1.6)
-        ex.set_xticks([0, 1], ["W so far", "D_x+D_y+U_el+K"], fontsize=9)
+        ex.set_xticks([0, 1], ["W so far", "D_x + D_y\n+ U_el + K"], fontsize=9)
         ex.set_ylabel("energy / (m V₀²)")
         self.wbar = ex.bar([0], [0], width=0.7, color="#555555")[0]
         self.parts = [ex.bar([1], [0], width=0.7, color=c, label=lab)[0] for _, lab, c in _ENERGY]
@@ -288,16 +305,15 @@ class _ArrayDrawer:
 
     def setup(self, fig):
         m = self.motion
-        from matplotlib.colors import LinearSegmentedColormap
+        from matplotlib.colors import ListedColormap
 
-        self.cmap = LinearSegmentedColormap.from_list("dir", [_ORANGE, "#333333", _BLUE])
-        gs = fig.add_gridspec(2, 1, height_ratios=(1.5, 1), hspace=0.5, left=0.08, right=0.97,
-                              bottom=0.1, top=0.88)
+        # The page's palette of the friction direction (-90 deg ... +90 deg).
+        self.cmap = ListedColormap(direction_palette(), name="direction")
+        gs = fig.add_gridspec(2, 1, height_ratios=(1.5, 1))
         ax = self.ax = fig.add_subplot(gs[0])
         pn = fig.add_subplot(gs[1])
         fig.suptitle(f"TOP VIEW · the slab slides over {m.n_supports} supports "
-                     f"({m.orientation} θ₀) · {_title(m.params)}", fontsize=10)
-        from app.figures.array_scene import slab_half_width, view_x
+                     f"({m.orientation} θ₀)\n{_title(m.params)}", fontsize=10)
 
         L0 = m.params.L0
         lead0 = float(m.slab_lead[0])
@@ -310,11 +326,11 @@ class _ArrayDrawer:
         self.half = half
         from matplotlib.patches import Rectangle
 
-        self.slab = ax.add_patch(Rectangle((lead0 - L0, -half), L0, 2 * half, fc="#9ecae1",
-                                           alpha=0.35, ec=_BLUE, lw=2.5, hatch="//", zorder=0))
-        self.vel = ax.annotate("slab velocity V₀", xy=(0, 0), xytext=(0, 0), color=_BLUE,
+        self.slab = ax.add_patch(Rectangle((lead0 - L0, -half), L0, 2 * half, fc=SLAB_FILL,
+                                           alpha=0.35, ec=_SLAB, lw=2.5, hatch="//", zorder=0))
+        self.vel = ax.annotate("slab velocity V₀", xy=(0, 0), xytext=(0, 0), color=_SLAB,
                                fontsize=8, va="center", ha="right",
-                               arrowprops=dict(arrowstyle="-|>", color=_BLUE, lw=2.5))
+                               arrowprops=dict(arrowstyle="-|>", color=_SLAB, lw=2.5))
         ax.plot(m.pivot_x, m.pivot_y, "s", color=_GREY, ms=2.5)
         from matplotlib.collections import LineCollection
 
@@ -325,8 +341,8 @@ class _ArrayDrawer:
         from matplotlib.colors import Normalize
 
         scale = ScalarMappable(norm=Normalize(-90, 90), cmap=self.cmap)
-        cb = fig.colorbar(scale, ax=ax, fraction=0.025, pad=0.01, ticks=[-90, -45, 0, 45, 90])
-        cb.ax.set_title("friction\ndir. [°]", fontsize=7)
+        cb = fig.colorbar(scale, ax=ax, fraction=0.025, pad=0.01, ticks=[-90, 0, 90])
+        cb.set_label("friction direction [°]", fontsize=7)
         cb.ax.tick_params(labelsize=7)
         pn.set_xlim(0, float(m.t_start.max()) + 0.5)
         # Drawn up to the last entry: then the slab leaves the grid (see array_scene).
@@ -339,11 +355,11 @@ class _ArrayDrawer:
         pn.set_ylim(0.6, top)
         pn.axvspan(*m.steady, color=_GREEN, alpha=0.08)
         pn.axhline(m.model["Nc_over_Nc0"], color=_BLUE, ls="--", lw=1.5)
-        pn.axhline(m.model["FTx_over_mu0FN_duration"], color=_VERMILION, ls="--", lw=1.5)
+        pn.axhline(m.model["FTx_over_mu0FN_duration"], color=_FTX, ls="--", lw=1.5)
         pn.axhline(1.0, color=_GREY, ls=":", lw=1.5)
         self.ratio = ratio
         self.nc, = pn.plot([], [], color=_BLUE, lw=2, label="N_c/N_c0 (dashed: model)")
-        self.ftx, = pn.plot([], [], color=_VERMILION, lw=2,
+        self.ftx, = pn.plot([], [], color=_FTX, lw=2,
                             label="F_T,x/(μ₀F_N) running mean (dashed: model)")
         self.cursor = pn.axvline(0, color=_GREY, lw=1)
         pn.set_xlabel("τ (slab travel / r₀)", fontsize=9)

@@ -1,4 +1,5 @@
-"""CSV downloads: the current trajectory (Figs. 7, 10) and the polar sweep (Fig. 11).
+"""CSV downloads: the current trajectory (Figs. 7, 10), the polar sweep (Fig. 11), the
+regime map (Fig. 5), the load curves (Fig. 6) and the array under the slab (Figs. 2a, 4).
 
 Both are written by the model's CSV writer (``model.csvfile``): ``# key: value`` lines
 (parameters, settings, package version, what each column holds), a header row, the data.
@@ -100,3 +101,63 @@ def sweep_csv(sweep, pinned=None, comparing: bool = False) -> str:
     a = None if pinned is None else (_sweep(pinned)[0], dict(pinned.settings))
     why_not = "pinned, but its sweep is not computed yet" if comparing and a is None else ""
     return csvfile.text(*_with_pinned(columns, header, a, why_not))
+
+
+def _not_yet(what: str) -> str:
+    return f"# no {what} computed yet: it is being computed, download again in a moment\n"
+
+
+def map_csv(regime_map) -> str:
+    """The regime map on show (Fig. 5, a ``model.shipped_map.RegimeMap``): one row per
+    (k_r, k_theta) cell, k_r outer; its metadata (load, beta, tolerance, grid) in the header."""
+    if regime_map is None:
+        return _not_yet("regime map")
+    arrays = regime_map.arrays()
+    n, m = regime_map.shape
+    k_r, k_theta = np.meshgrid(arrays.pop("k_r"), arrays.pop("k_theta"), indexing="ij")
+    columns = {"k_r": k_r.ravel(), "k_theta": k_theta.ravel(),
+               **{name: np.asarray(v).ravel() for name, v in arrays.items()}}
+    columns["quadrature_error_FTx"] = columns.pop("quadrature_error")
+    header = {"kind": "regime_map", "figure": "5", "version": __version__,
+              "cells": f"{n} x {m} (k_r outer)", **regime_map.metadata}
+    return csvfile.text(columns, header)
+
+
+def load_csv(curves: dict | None) -> str:
+    """The Load tab's curves (Fig. 6): {curve: {F_N: uniform-array row}} as one row per
+    curve and load; ``curve`` is "current" (the springs of the controls) or a regime."""
+    rows = [(name, F_N, row) for name, curve in (curves or {}).items()
+            for F_N, row in sorted(curve.items())]
+    if not rows:
+        return _not_yet("load curve")
+    names = [k for k in rows[0][2] if k not in ("k_r", "k_theta", "F_N")]
+    columns = {"curve": [r[0] for r in rows], "k_r": [r[2].get("k_r") for r in rows],
+               "k_theta": [r[2].get("k_theta") for r in rows], "F_N": [r[1] for r in rows],
+               **{k: [r[2].get(k) for r in rows] for k in names}}
+    header = {"kind": "load", "figure": "6", "version": __version__,
+              "column curve": "current: the springs of the controls; else a regime of the paper"}
+    return csvfile.text(columns, header)
+
+
+#: The Array tab's per-frame columns (``model.array_motion.ArrayMotion``).
+ARRAY_FRAME_COLUMNS = ("t", "slab_lead", "N_c", "N_c0", "FTx", "FTx_running")
+
+
+def array_csv(motion) -> str:
+    """The Array tab's live curves, frame by frame (time, the slab's leading edge, supports
+    in contact N_c against N_c0, F_T,x/(mu0 F_N) now and its running mean); the array
+    model's readouts and the grid in the header."""
+    if motion is None:
+        return _not_yet("array")
+    columns = {name: np.asarray(getattr(motion, name), float) for name in ARRAY_FRAME_COLUMNS}
+    model = {f"model {k}": (v if isinstance(v, str) else float(v))
+             for k, v in motion.model.items()}
+    header = {"kind": "array", "figure": "2a, 4", "version": __version__,
+              **motion.params.as_dict(), "orientation": motion.orientation,
+              "supports": int(motion.n_supports),
+              "grid": f"{motion.n_rows} x {motion.n_cols}", "steady window": [float(x) for x in motion.steady],
+              **model,
+              "column FTx": "F_T,x/(mu0 F_N) of the supports in contact now (NaN: no rigid "
+                            "support would be under the slab)",
+              "column FTx_running": "its mean since the steady window opened"}
+    return csvfile.text(columns, header)

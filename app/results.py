@@ -27,6 +27,9 @@ log = logging.getLogger(__name__)
 
 #: The Design tab's results computed while the tab is on screen (``SessionResults.show``).
 DESIGN_RESULTS = ("design_point", "design_array", "design_polar")
+#: What the headline above every tab reads (``app.views.readouts.HeadlineView``): needed
+#: whichever tab is on screen, though a tab's own list may leave them out.
+HEADLINE_RESULTS = ("support", "uniform")
 
 
 def optimum_family(state) -> str:
@@ -298,10 +301,7 @@ class SessionResults(PinnedResults):
                        self.BUDGET_S["regime_map"], then=fine)
 
     def _array_request(self) -> Request:
-        s = self.state
-        p = s.params.replace(beta=1.0)
-        if s.orientation == "uniform":  # theta0 plays no part
-            p = p.replace(theta0=math.pi / 2)
+        s, p = self.state, worker.array_params(self.state)
         return Request("background", ("array", p, s.orientation), worker.compute_array_motion,
                        (p, s.orientation), self.BUDGET_S["array"])
 
@@ -365,8 +365,8 @@ class SessionResults(PinnedResults):
 
     # ------------------------------------------------------------------ control
     def show(self, names) -> None:
-        """Compute the results in ``names`` (on screen) and only those of the optional ones."""
-        names = set(names)
+        """Compute the results in ``names`` (on screen) and the headline's, no other."""
+        names = set(names) | set(HEADLINE_RESULTS)
         for name in ("polar", "load", "load_regimes", "uniform", "regime_map", "array",
                      *DESIGN_RESULTS):
             self.slots[name].set_needed(name in names)

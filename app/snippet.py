@@ -20,7 +20,9 @@ from model.cli.snippet import params_source, source
 
 from . import worker
 from .pinned_state import complete
+from .snippet_tabs import BLOCKS, IMPORTS
 from .state import ExplorerState
+from .texts import FELT_AVERAGE
 
 __all__ = ["view_as_python"]
 
@@ -44,7 +46,9 @@ def _support_block(state, tag: str, who: str) -> str:
     printed lines start with ``who``."""
     p = state.params
     beta = state.array_beta
-    attribute, meaning = AVERAGE_ATTRIBUTES[state.average]
+    (felt, felt_meaning), (other, other_meaning) = (
+        AVERAGE_ATTRIBUTES[FELT_AVERAGE], *(v for k, v in AVERAGE_ATTRIBUTES.items()
+                                            if k != FELT_AVERAGE))
     # Degrees as on the slider; math.radians is how ExplorerState converts them.
     params = params_source(p, theta0=f"math.radians({source(float(state.theta0))})")
     # A uniform array covers every theta0 and takes its load factor as an argument.
@@ -66,8 +70,8 @@ print(f"{w}support: t_out = {{support{t}.t_out!r}}, W = {{support{t}.W!r}}, "
 # Readouts: the uniform-orientation array, theta0 uniform on [0, 2 pi) (Figs. 5, 6, 8)
 springs{t} = {springs}
 uniform{t} = uniform_array(springs{t}, beta={source(beta)}, tol={source(worker.UNIFORM_TOL)})
-print(f"{w}uniform array: F_T,x/(mu0 F_N) = {{float(uniform{t}.{attribute})!r}}"
-      f" ({meaning})")
+print(f"{w}uniform array: F_T,x/(mu0 F_N) = {{float(uniform{t}.{felt})!r}}"
+      f" ({felt_meaning}: the headline's), {{float(uniform{t}.{other})!r}} ({other_meaning})")
 print(f"{w}uniform array: D_y/D_x = {{float(uniform{t}.Dy_over_Dx)!r}}, "
       f"N_c/N_c0 = {{float(uniform{t}.Nc_over_Nc0)!r}}")
 '''
@@ -96,7 +100,17 @@ print(f"{w}design array: F_T,x/(mu0 F_N) = {{float(array{t}.array.FTx_over_mu0FN
 
 def view_as_python(state) -> str:
     """The snippet for ``state`` (an ``app.state.ExplorerState``): runs on its own in a
-    fresh interpreter and prints the readouts' numbers (and a pinned state's, and B − A)."""
+    fresh interpreter and prints the readouts' numbers (and a pinned state's, and B − A);
+    on the Orientation, Regime map, Load and Array tabs that tab's numbers instead
+    (``app.snippet_tabs``)."""
+    if state.tab in BLOCKS:  # a tab of many supports: its own calls
+        return f'''\
+# The dashboard's current view as Python (micropillar-friction {__version__})
+import math
+
+{IMPORTS[state.tab]}
+
+{BLOCKS[state.tab](state)}'''
     design = state.tab == "design"
     pinned = state.pinned
     who = "B " if pinned is not None else ""
@@ -108,7 +122,7 @@ def view_as_python(state) -> str:
     body = _support_block(state, "", who) + (_design_block(state, "", who) if design else "")
     if pinned is not None:
         a = ExplorerState(**complete(pinned), average=state.average)
-        attribute = AVERAGE_ATTRIBUTES[state.average][0]
+        attribute = AVERAGE_ATTRIBUTES[FELT_AVERAGE][0]  # as the headline
         body += ("\n# The pinned state A of the comparison: the same calls with its values\n"
                  + _support_block(a, "_A", "A ") + (_design_block(a, "_A", "A ") if design
                                                     else ""))

@@ -8,40 +8,43 @@ from model.params import DEFAULTS as _D
 _LAW = (f"μ_s = {_D['mu_s']:g}, A = {_D['A']:g}, B = {_D['B']:g}".replace("-", "−")
         + f", ζ = {_D['zeta']:g}")
 
-#: regime -> (title, what the model does at theta0 = 90 deg, F_N = 1): numbers from
-#: ``app.lesson.facts`` (tests/test_lesson.py); where the motion differs from the paper's
-#: wording, the text says so.
+#: regime -> (title, mechanism): what the springs of the regime let the support do (the
+#: paper's Figs. 5-7), in words true of any state of the regime. The numbers of the state
+#: on screen (stretch, swing, sticking, friction change) are written from its computed
+#: motion (``app.motion_words``), never fixed per preset.
 MECHANISMS = {
     "pendulum": (
         "Pendulum (stiff radial, soft torsional spring)",
-        "The support swings about its pivot: dragged forward, it turns from 90° through 0° to "
-        "about −24° and back, and its stiff radial spring still stretches (r from 1 up to "
-        "1.8 r₀ at F_N = 1), so it is not a rigid pendulum. The swing drives the mass "
-        "sideways: the friction turns away from the sliding direction (F_f,y ≠ 0, "
-        "D_y/D_x ≈ 0.08) and the slab needs about 5 % less force than on a rigid surface."),
+        "The soft torsional spring lets the support swing about its pivot, while the stiff "
+        "radial spring resists (but does not forbid) stretching. While the mass moves "
+        "sideways, the friction turns away from the sliding direction (F_f,y ≠ 0): part of "
+        "the work is dissipated across it (D_y) and less force resists the slab."),
     "slider": (
         "Slider (soft radial, stiff torsional spring)",
-        "The soft radial spring lets the slab pull the mass far out: at θ₀ = 90° it stretches "
-        "to about 10 r₀ while turning from 90° to 26° (the stiff torsional spring resists "
-        "but does not keep the orientation, unlike the paper's picture). Supports leaning "
-        "backwards (θ₀ ≫ 90°) are compressed instead. Contacts last up to six times longer "
-        "than L₀, transverse dissipation is D_y/D_x ≈ 0.15 for θ₀ = 90°, and the force drops "
-        "by 9-16 % (16 % for a fixed array at θ₀ = 90°)."),
+        "The soft radial spring lets the slab pull the mass out (supports leaning forward "
+        "are stretched, those leaning backwards, θ₀ ≫ 90°, are compressed) while the stiff "
+        "torsional spring resists turning. A mass carried along rubs at low relative speed, "
+        "where μ is smaller, and part of the slab's work is stored in the stretched spring."),
     "stiff": (
         "Stiff (both springs stiff)",
-        "The support is pushed forward -- at θ₀ = 90° it turns by about 35° and stretches to "
-        "1.3 r₀ within two time units -- then rocks back and forth between about 60° and "
-        "80°. It never slides slowly against the slab: the friction stays at μ₀ and along "
-        "x, so there is no significant friction reduction (under 0.3 %) and almost no "
-        "transverse dissipation (D_y/D_x < 0.01)."),
+        "Both springs resist the slab: the support is pushed a little and rocks, but hardly "
+        "slides slowly against the slab, so the friction stays close to μ₀ and along x."),
     "soft": (
         "Soft (both springs soft)",
-        "The compliant support sticks to the slab (|v_R| < 0.1 V₀ for about 60 % of the "
-        "contact) and is carried along, stretched to about 20 r₀, until the slab has passed. "
-        "More than half of the slab's work ends up stored in the springs (U_el/W ≈ 0.55) "
-        "rather than dissipated, the contact lasts almost three times L₀, and the force drops "
-        "by about 16 %."),
+        "Both springs give: the support can stick to the slab and be carried along, "
+        "stretched, until the slab has passed. Part of the slab's work is stored in the "
+        "springs (U_el) rather than dissipated, and while the mass sticks, the small "
+        "elastic force, not sliding friction, resists the slab."),
 }
+
+#: The average of the uniform array a class sees (headline, Array tab): the force the slab
+#: feels when contacts last different times (docs/model.md, "Arrays"), and its words.
+FELT_AVERAGE = "duration"
+FELT_WORDS = "each support counted for as long as it touches the slab"
+#: The two averages of a uniform array as the folded details name them.
+AVERAGE_NAMES = {
+    "duration": "duration-weighted: the force the slab feels (headline)",
+    "paper": "paper, Eq. 10: each support counted once"}
 
 EQUATIONS_INTRO = (
     "### The model (dimensionless; Sci. Rep. 11, 8093, 2021)\n"

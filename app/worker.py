@@ -183,6 +183,13 @@ def compute_map(F_N: float, beta="self", n: int = MAP_FINE_N):
 ARRAY_FRAMES = 600
 
 
+def array_params(state) -> Params:
+    """The ``Params`` of the Array tab's ``compute_array_motion`` for an ``ExplorerState``
+    (beta solved inside; theta0 plays no part in a uniform array)."""
+    p = state.params.replace(beta=1.0)
+    return p.replace(theta0=math.pi / 2) if state.orientation == "uniform" else p
+
+
 def compute_array_motion(params: Params, orientation: str = "uniform"):
     """The array under the slab (Figs. 2a, 4): ~100 supports' trajectories on
     ``ARRAY_FRAMES`` frames (``model.array_motion``), computed once per parameter set."""

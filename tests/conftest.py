@@ -39,3 +39,16 @@ def _private_disk_cache(tmp_path_factory):
         os.environ.pop("MICROPILLAR_CACHE_DIR", None)
     else:
         os.environ["MICROPILLAR_CACHE_DIR"] = old
+
+
+@pytest.fixture
+def pool(monkeypatch):
+    """Every dashboard computation run here and now (``fakes.InProcessPool``), recorded."""
+    from app import results as results_module
+    from app import slot
+    from fakes import InProcessPool
+
+    pool = InProcessPool()
+    monkeypatch.setattr(slot, "work_pool", lambda: pool)
+    monkeypatch.setattr(results_module, "work_pool", lambda: pool)
+    return pool

@@ -93,3 +93,43 @@ def test_cli_bad_input_exits_2(tmp_path, capsys, argv, word):
     assert exit_info.value.code == 2
     assert word in capsys.readouterr().err
     assert not (tmp_path / "x.gif").exists()
+
+
+# --------------------------------------------------------------------- what a slide shows
+
+@pytest.mark.parametrize("what", ["support", "array"])
+@pytest.mark.parametrize("size", [(640, 360), (960, 540)])
+def test_every_text_of_the_frame_is_inside_it(what, size):
+    """Title, panel titles, axis labels, legends and tick labels lie within the picture
+    (at 640 x 360 the title, the energy panel's title and the legend were cut off)."""
+    from app.animation_export import frame_figure
+    from app.frame_fit import outside
+
+    _, fig = frame_figure(what, REGIMES["slider"], 4, size)
+    assert outside(fig) == []
+    title = fig.get_suptitle()
+    assert "k_r = 0.01" in title and "F_N = 1" in title
+    legends = fig.legends + [ax.get_legend() for ax in fig.axes if ax.get_legend()]
+    assert legends and all(t.get_fontsize() >= 6 for lg in legends for t in lg.get_texts())
+    assert all(ax.title.get_fontsize() >= 6 for ax in fig.axes)
+
+
+def test_the_frame_draws_each_quantity_in_the_page_s_colour():
+    """v_R, the friction force and the slab as on the page's top view
+    (``app.figures.scene``); the energy terms as the page's bars (``app.figures.histories``)."""
+    from matplotlib.colors import to_hex
+
+    from app.animation_export import frame_figure
+    from app.figures.histories import ENERGY_COLORS, ENERGY_TERMS
+    from app.figures.scene import FORCE_COLOR, SLAB_COLOR, VREL_COLOR
+
+    drawer, fig = frame_figure("support", REGIMES["pendulum"], 4, (640, 360))
+    assert to_hex(drawer.relvel.arrow_patch.get_edgecolor()) == VREL_COLOR.lower()
+    assert to_hex(drawer.friction.arrow_patch.get_edgecolor()) == FORCE_COLOR.lower()
+    keys = {t.get_text(): to_hex(h.get_color())
+            for lg in fig.legends for t, h in zip(lg.get_texts(), lg.legend_handles)}
+    assert keys["relative velocity v_R"] == VREL_COLOR.lower()
+    assert keys["friction on the mass"] == FORCE_COLOR.lower()
+    assert keys["slab velocity V₀ (slab shaded)"] == SLAB_COLOR.lower()
+    bars = [to_hex(bar.get_facecolor()) for bar in drawer.parts]
+    assert bars == [c.lower() for c in ENERGY_COLORS] and len(bars) == len(ENERGY_TERMS)

@@ -16,12 +16,10 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from app import results as results_module
-from app import slot
 from app.state import ExplorerState
 from app.pinned_state import PINNED_ALL, PINNED_KEYS, parse_pinned, pinned_text
 from app.urlstate import (BETA_BOUNDS, F_N_BOUNDS, K_BOUNDS, RTOLS, parse, serialize,
                           to_search)
-from fakes import InProcessPool
 
 PINNED = dict(k_r=0.5, k_theta=0.2, F_N=1.0, theta0=60.0, rtol=1e-6, beta_mode="self",
               beta=1.0)
@@ -116,14 +114,6 @@ def test_an_address_without_a_clears_the_pin_on_back_and_forward():
 
 
 # ------------------------------------------------------------------------------ results
-
-@pytest.fixture
-def pool(monkeypatch):
-    pool = InProcessPool()
-    monkeypatch.setattr(slot, "work_pool", lambda: pool)
-    monkeypatch.setattr(results_module, "work_pool", lambda: pool)
-    return pool
-
 
 def _started(state, tab_results):
     r = results_module.SessionResults(state)

@@ -140,14 +140,6 @@ def test_a_state_pinned_with_the_support_only_has_the_default_design():
 
 # ------------------------------------------------------------------------------ results
 
-@pytest.fixture
-def pool(monkeypatch):
-    pool = InProcessPool()
-    monkeypatch.setattr(slot, "work_pool", lambda: pool)
-    monkeypatch.setattr(results_module, "work_pool", lambda: pool)
-    return pool
-
-
 DESIGN_CALLS = ("compute_design_point", "compute_design_array")
 
 
@@ -244,7 +236,7 @@ def test_the_headline_names_a_and_b_minus_a(page):
     a_fixed, b_fixed = r.support_A.fixed.FTx_over_mu0FN, r.support.fixed.FTx_over_mu0FN
     assert "A (pinned)" in html and f"B − A = {b_fixed - a_fixed:+.3g}" in html
     assert pinned_clause(0.9, 60.0, None, 0.95, None) == (
-        "A (pinned): 10.0 % below at θ₀ = 60°, averaged: being computed; "
+        "A (pinned): 10.0 % below at θ₀ = 60°, all orientations: being computed; "
         "B − A = +0.05, – (F_T,x/μ₀F_N)")
 
 

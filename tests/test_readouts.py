@@ -23,8 +23,9 @@ def test_change_words(ratio, words):
 def test_headline_names_both_arrays_and_what_is_missing():
     text = headline_text(0.9463, 90.0, 0.9451)
     assert text == ("Friction is 5.4 % below a rigid surface (every support at θ₀ = 90°); "
-                    "averaged over all orientations: 5.5 % below a rigid surface.")
-    assert headline_text(0.9, 45.0, None).endswith("all orientations: being computed.")
+                    "with supports of all orientations the slab feels 5.5 % below a rigid "
+                    "surface (each support counted for as long as it touches the slab).")
+    assert headline_text(0.9, 45.0, None).endswith("the slab feels being computed.")
     assert headline_text(0.9, 45.0, None, "not computed (see the notice)").endswith(
         "not computed (see the notice).")
     assert headline_text(None, 45.0, None).startswith("Friction: being computed;")
@@ -34,7 +35,10 @@ def test_tables_use_readable_labels():
     row = {"FTx_over_mu0FN": 0.95, "FTx_over_mu0FN_duration": 0.94, "Dy_over_Dx": 0.1,
            "Nc_over_Nc0": 1.1, "quadrature_error_FTx": 1e-4}
     table = uniform_markdown(row, "paper")
-    assert "friction F_T,x/(μ₀F_N), paper (Eq. 10) | **0.95**" in table
+    assert "friction F_T,x/(μ₀F_N), paper, Eq. 10: each support counted once | **0.95**" in table
+    # The slab's average (the headline's) comes first, named in words.
+    assert table.index("duration-weighted: the force the slab feels (headline) | 0.94 |") < \
+        table.index("paper, Eq. 10")
     assert "dissipated across / along, D_y/D_x" in table
     assert fixed_markdown(None) == "*No result for these parameters.*"
 
@@ -64,3 +68,59 @@ def test_the_uniform_readout_shows_a_spinner_while_its_array_is_computed():
     assert view.uniform_holder.loading and view.uniform_pane.object == text
     results.busy = ["support"]
     assert not view.uniform_holder.loading
+
+
+@pytest.mark.parametrize("tab", ["support", "array", "polar", "map", "load", "equations"])
+def test_the_headline_settles_on_every_tab(pool, tab, monkeypatch):
+    """The headline stands above every tab (but Design): its uniform array is computed
+    whichever tab is on screen, also after the controls move there."""
+    from app import worker
+    from app.results import SessionResults
+    from app.views.page import TAB_RESULTS
+    from app.views.readouts import HeadlineView
+
+    # Only the headline's results matter here: the tab's own are not computed.
+    for name in ("compute_polar", "compute_map", "compute_array_motion"):
+        monkeypatch.setattr(worker, name, lambda *a, **k: None)
+    for name in ("compute_load", "compute_load_regimes"):
+        monkeypatch.setattr(worker, name, lambda *a, **k: {})
+    state = ExplorerState(tab=tab)
+    results = SessionResults(state)
+    results.show(TAB_RESULTS[tab])
+    results.start()
+    view = HeadlineView(state=state, results=results)
+    state.param.update(k_r=0.01, k_theta=3.0)  # the slider, moved on this tab
+    text = view.pane.object
+    assert "being computed" not in text
+    felt = results.uniform["FTx_over_mu0FN_duration"]
+    assert results.uniform is not None and f"the slab feels {change_words(felt)}" in text
+    assert change_words(results.support.fixed.FTx_over_mu0FN) in text
+
+
+def test_the_headline_quotes_the_force_the_slab_feels_whatever_the_plots_average(pool):
+    """One number for all orientations: the duration-weighted average (the Array tab's and
+    the lesson's 0.845 for the slider), not Eq. 10's, even with the plots set to Eq. 10."""
+    from app.results import SessionResults
+    from app.views.readouts import HeadlineView
+
+    for average in ("paper", "duration"):
+        state = ExplorerState(k_r=0.01, k_theta=3.0, average=average)
+        results = SessionResults(state)
+        results.start()
+        text = HeadlineView(state=state, results=results).pane.object
+        assert f"{results.uniform['FTx_over_mu0FN_duration']:.3f}" == "0.845"
+        assert "15.5 % below a rigid surface (each support counted for as long" in text
+        assert change_words(results.uniform["FTx_over_mu0FN"]) not in text
+
+
+def test_the_lesson_teaches_the_headline_s_number():
+    """docs/teaching.md Q6 quotes the force the slab feels as the headline words it."""
+    from pathlib import Path
+
+    from app.lesson import facts
+
+    doc = (Path(__file__).resolve().parents[1] / "docs" / "teaching.md").read_text("utf-8")
+    q6 = doc[doc.index("## Q6"):doc.index("## Q7")]
+    felt = facts("slider", 90, 1)["uniform_FTx_duration"]
+    assert f"*duration-weighted* average ({felt:.3f}, {change_words(felt)})" in q6
+    assert "headline" in q6

@@ -20,10 +20,19 @@ from ..state import K_MID
 from .common import BLACK, GREY, REGIME_COLORS, VERMILION, new_figure, source
 
 MAP_QUANTITIES = {
-    "5a": ("FTx_over_mu0FN", "Uniform array F_T,x/(μ₀F_N), F_N = 1 (Fig. 5a)"),
-    "5b": ("Dy_over_Dx", "Uniform array D_y/D_x, F_N = 1 (Fig. 5b)"),
+    "5a": ("FTx_over_mu0FN", "Uniform array F_T,x/(μ₀F_N)"),
+    "5b": ("Dy_over_Dx", "Uniform array D_y/D_x"),
 }
 AVERAGE_COLUMNS = {"paper": "FTx_over_mu0FN", "duration": "FTx_over_mu0FN_duration"}
+
+
+def map_title(quantity: str, regime_map=None, average: str = "paper") -> str:
+    """The map's title: its quantity (and average), and the load of the map on show."""
+    F_N = (regime_map.metadata.get("F_N", 1.0) if regime_map is not None else None)
+    load = f", F_N = {F_N:g}" if F_N is not None else ""
+    avg = (f", {'duration-weighted' if average == 'duration' else 'Eq. 10'} average"
+           if quantity == "5a" else "")
+    return f"{MAP_QUANTITIES[quantity][1]}{avg}{load} (Fig. {quantity})"
 K_AXIS = (0.008, 3.8)
 
 
@@ -73,7 +82,7 @@ def regime_map_figure(regime_map, quantity: str = "5a", average: str = "paper",
     """Fig. 5a/5b on log axes; ``current`` = (k_r, k_theta) is marked."""
     data = map_data(regime_map, quantity, average)["regime_map"]
     lo, hi = value_range(data["value"])
-    fig = new_figure("regime_map", MAP_QUANTITIES[quantity][1], width, height,
+    fig = new_figure("regime_map", map_title(quantity, regime_map, average), width, height,
                      x_axis_type="log", y_axis_type="log", x_range=Range1d(*K_AXIS),
                      y_range=Range1d(*K_AXIS), x_axis_label="k_r (radial stiffness)",
                      y_axis_label="k_θ (torsional stiffness)",

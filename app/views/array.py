@@ -19,8 +19,10 @@ from .. import figures as F
 from ..figures.array_scene import array_scene
 from ..figures.player import browser_player
 from ..results import SessionResults
+from ..export import array_csv
 from ..state import ExplorerState
-from .export import AnimationExport
+from ..texts import FELT_WORDS
+from .export import AnimationExport, ResultDownload, svg_button
 
 
 #: The tab's figures restyled in projector mode.
@@ -32,8 +34,7 @@ def result_text(motion, orientation: str) -> str:
     duration-weighted average, the dashed line the live mean settles to), then the grid."""
     m = motion.model
     return (f"**Result: F_T,x/(μ₀F_N) = {m['FTx_over_mu0FN_duration']:.3f}**, the force "
-            f"on the sliding slab once it has settled (the supports' friction averaged "
-            f"over their time in contact), with N_c/N_c0 = {m['Nc_over_Nc0']:.3g} supports "
+            f"on the sliding slab once it has settled ({FELT_WORDS}), with N_c/N_c0 = {m['Nc_over_Nc0']:.3g} supports "
             f"in contact per rigid one. Below: {motion.n_supports} supports on a "
             f"{motion.n_rows} × {motion.n_cols} grid, θ₀ "
             f"{'uniform' if orientation == 'uniform' else 'fixed'}; the live values move "
@@ -62,6 +63,10 @@ class ArrayView(pn.viewable.Viewer):
         self.pane = pn.pane.Bokeh(None, css_classes=["array-view"], margin=(0, 5),
                                   sizing_mode="stretch_width")
         self.export = AnimationExport(state=self.state, results=self.results, what="array")
+        self.csv = ResultDownload(lambda: array_csv(self.results.array), "array.csv", "array",
+                                  results=self.results, name="array", label="Array CSV")
+        self.svg = svg_button(["array_top", "array_live_panel"], css="array-svg",
+                              label="Figures (SVG)")
         self._draw()
         self._on_busy()
 
@@ -106,5 +111,6 @@ class ArrayView(pn.viewable.Viewer):
 
     def __panel__(self):
         return pn.Column(self.toggle, self.status, self.pane, self.export,
+                         pn.Row(self.csv, self.svg, margin=0, sizing_mode="stretch_width"),
                          sizing_mode="stretch_width",
                          css_classes=["array-tab"])

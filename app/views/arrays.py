@@ -12,11 +12,13 @@ from bokeh.events import Tap
 from bokeh.palettes import Cividis256, Viridis256
 
 from .. import figures as F
-from ..figures.arrays import AVERAGE_COLUMNS, MAP_QUANTITIES
+from ..figures.arrays import AVERAGE_COLUMNS, map_title
 from ..figures.pinned import add_pinned, load_curve_A, show_pinned
 from ..results import SessionResults
 from ..state import ExplorerState
+from ..export import load_csv, map_csv
 from ..worker import LOAD_F_N, UNIFORM_TOL
+from .export import ResultDownload, svg_button
 from .layout import BUTTON_CSS, grid_css
 
 #: One figure beside a column of text (narrower in projector mode): the figure takes what
@@ -50,6 +52,10 @@ class RegimeMapView(pn.viewable.Viewer):
         F.style(self.figure, state.projector)
         self.info = pn.pane.Markdown("", sizing_mode="stretch_width",
                                      styles={"font-size": "0.92em"}, css_classes=["map-info"])
+        self.csv = ResultDownload(lambda: map_csv(self.results.regime_map), "regime_map.csv",
+                                  "map", results=self.results, name="regime_map",
+                                  label="Map CSV")
+        self.svg = svg_button(["regime_map"], css="map-svg")
         self._describe()
 
     def _on_tap(self, event) -> None:
@@ -95,7 +101,7 @@ class RegimeMapView(pn.viewable.Viewer):
         F.update(self._sources, data)
         lo, hi = F.value_range(data["regime_map"]["value"])
         self._mapper.update(low=lo, high=hi, palette=Viridis256 if q == "5a" else Cividis256)
-        self.figure.title.text = MAP_QUANTITIES[q][1]
+        self.figure.title.text = map_title(q, self.map, self.state.average)
 
     @param.depends("state.projector", watch=True)
     def _restyle(self) -> None:
@@ -105,7 +111,9 @@ class RegimeMapView(pn.viewable.Viewer):
         return pn.Column(
             pn.pane.Bokeh(self.figure, sizing_mode="stretch_both",
                           css_classes=["figure", "figure-regime_map"]),
-            pn.Column(self.toggle, self.info, css_classes=["side-column"], margin=0),
+            pn.Column(self.toggle, self.info, pn.Row(self.csv, self.svg, margin=0,
+                                                     sizing_mode="stretch_width"),
+                      css_classes=["side-column"], margin=0),
             css_classes=["map-view"], margin=0, sizing_mode="stretch_both",
             stylesheets=[FIGURE_AND_TEXT])
 
@@ -128,6 +136,10 @@ class LoadView(pn.viewable.Viewer):
         self.pane = pn.pane.Bokeh(self.figure, sizing_mode="stretch_both",
                                   css_classes=["figure", "figure-load"])
         F.style(self.figure, self.state.projector)
+        self.csv = ResultDownload(lambda: load_csv(self.results.load), "load_curves.csv",
+                                  "load", results=self.results, name="load",
+                                  label="Load curves CSV")
+        self.svg = svg_button(["load"], css="load-svg")
         self._redraw()
 
     @property
@@ -185,8 +197,11 @@ class LoadView(pn.viewable.Viewer):
             "Uniform arrays (θ₀ uniform on [0°, 360°)) against the normal load (Fig. 6), "
             f"at F_N = {', '.join(f'{f:.2g}' for f in LOAD_F_N)}. "
             "Coloured lines: the paper's four regimes; black: the current k_r, k_θ; the "
-            "marker: the current F_N (the readout of the One support tab).",
+            "marker: the current F_N. The curves show the average chosen under "
+            "Advanced options (the headline gives the duration-weighted one, the force the "
+            "slab feels).",
             sizing_mode="stretch_width", styles={"font-size": "0.92em"}),
+            pn.Row(self.csv, self.svg, margin=0, sizing_mode="stretch_width"),
             css_classes=["side-column"], margin=0),
             css_classes=["load-view"], margin=0, sizing_mode="stretch_both",
             stylesheets=[FIGURE_AND_TEXT])

@@ -1,6 +1,7 @@
 """This view as code: the Python snippet (public ``model`` API) that reproduces the numbers
-on the page for the current controls (``app.snippet.view_as_python``; with a pinned state
-A, A's numbers too, and on the Design tab the design's array), folded in a card, and the
+on the page for the current controls and tab (``app.snippet.view_as_python``: the
+Orientation, Regime map, Load and Array tabs get their own calls; with a pinned state A,
+A's numbers too, and on the Design tab the design's array), folded in a card, and the
 software's version and how to cite it."""
 from __future__ import annotations
 
@@ -37,7 +38,8 @@ class CodeView(pn.viewable.Viewer):
 
     @param.depends("state.k_r", "state.k_theta", "state.F_N", "state.theta0", "state.rtol",
                    "state.beta_mode", "state.beta", "state.average", "state.pinned",
-                   "state.tab", *(f"state.{name}" for name in DESIGN_KEYS + DIST_KEYS),
+                   "state.tab", "state.map_quantity", "state.orientation",
+                   *(f"state.{name}" for name in DESIGN_KEYS + DIST_KEYS),
                    watch=True)
     def _write(self) -> None:
         if self.card.collapsed:

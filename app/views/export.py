@@ -1,6 +1,7 @@
-"""Export for slides: a GIF or MP4 of the animation on show, made on the server in the
-background (``SessionResults.prepare_animation``) and then offered for download. The
-page never waits for it."""
+"""Exports from the page: a GIF or MP4 of the animation on show for slides, made on the
+server in the background (``SessionResults.prepare_animation``) and then offered for
+download; the CSV of a result, offered once it is computed (``ResultDownload``); figures
+saved as SVG in the browser (``svg_button``). The page never waits for any of them."""
 from __future__ import annotations
 
 import io
@@ -70,3 +71,104 @@ class AnimationExport(pn.viewable.Viewer):
         return pn.FlexBox(self.format, self.make, self.download, self.status,
                           flex_wrap="wrap", css_classes=[f"export-{self.what}"],
                           sizing_mode="stretch_width")
+
+
+class ResultDownload(pn.viewable.Viewer):
+    """A CSV of one result (``SessionResults.<name>``), offered only once it is there:
+    disabled and saying "computing…" while it is computed; for a result the tab does not
+    compute by itself (the polar sweep off its tab), a button asks for it first. With a
+    pinned state A, A's result is waited for too (``writer`` puts it beside B's)."""
+
+    results = param.ClassSelector(class_=SessionResults, constant=True)
+    name = param.String(constant=True)
+    label = param.String(constant=True)
+
+    def __init__(self, writer, filename: str, css: str, **params):
+        super().__init__(**params)
+        self._writer = writer
+        # Long captions ("… computing…") wrap rather than being cut off.
+        common = dict(sizing_mode="stretch_width", margin=(2, 3),
+                      stylesheets=[BUTTON_CSS, ".bk-btn { white-space: normal; }"])
+        self.download = pn.widgets.FileDownload(
+            callback=self._file, filename=filename, label=self.label,
+            css_classes=[f"download-{css}"], **look("light"), **common)
+        self.compute = pn.widgets.Button(**caption(f"Compute {self.label[:1].lower()}{self.label[1:]}"), visible=False,
+                                         css_classes=[f"download-{css}-compute"],
+                                         **look("light", "outline"), **common)
+        self.compute.on_click(self._request)
+        state = self.results.state
+        state.param.watch(self._update, list(self.results.slots[self.name].depends)
+                          + ["pinned"])
+        self.results.param.watch(self._update, [self.name, "busy", "errors"])
+        self._update()
+
+    def _slots(self) -> list:
+        r = self.results
+        return [s for s in (r.slots[self.name], r.pinned_slot(self.name)) if s is not None]
+
+    @property
+    def ready(self) -> bool:
+        return getattr(self.results, self.name) is not None and all(
+            s.current for s in self._slots())
+
+    def _request(self, _event=None) -> None:
+        for slot in self._slots():
+            if not slot.current:
+                slot.request()
+        self._update()
+
+    def _update(self, *_events) -> None:
+        r = self.results
+        busy = self.name in r.busy or (r.A is not None and self.name in r.A.busy)
+        ready = self.ready and not busy
+        error = r.errors.get(self.name, "")
+        self.download.disabled = not ready
+        self.download.label = self.label if ready else (
+            f"{self.label}: failed" if error and not busy else f"{self.label}: computing…")
+        # Not on its way (a result this tab does not compute): a button asks for it.
+        waiting = not ready and not busy and not error and not r.slots[self.name].needed
+        self.compute.visible = waiting
+        self.download.visible = not waiting
+
+    def _file(self):
+        return io.StringIO(self._writer() if self.ready else "")
+
+    def __panel__(self):
+        return pn.Column(self.compute, self.download, sizing_mode="stretch_width", margin=0)
+
+
+#: Saves Bokeh figures of the page, by name, as SVG files: each figure drawn on screen is
+#: exported by its own view (BokehJS ``PlotView.export("svg")``, what the toolbar's save
+#: tool does for a figure drawn in SVG), whatever backend draws it on the page.
+SVG_JS = """
+const wanted = new Set(names);  // empty: every figure on screen
+for (const doc of Bokeh.documents) {
+  for (const model of doc.all_models) {
+    if (typeof model.output_backend !== "string" || model.name == null) continue;
+    if (wanted.size > 0 && !wanted.has(model.name)) continue;
+    const view = Bokeh.index.find_one(model);
+    // Drawn and on screen (a hidden tab's figures have no boxes).
+    if (view == null || !view.el.isConnected || view.el.getClientRects().length === 0
+        || view.bbox.width === 0) continue;
+    view.export("svg").to_blob().then((blob) => {
+      const link = document.createElement("a");
+      link.href = URL.createObjectURL(blob);
+      link.download = `${prefix}${model.name}.svg`;
+      document.body.appendChild(link);
+      link.click();
+      link.remove();
+    });
+  }
+}
+"""
+
+
+def svg_button(names=(), prefix: str = "", label: str = "Figure (SVG)", css: str = "svg"):
+    """A button that saves the figures ``names`` (those on screen; none named: every
+    figure on screen) as ``prefix<name>.svg``, in the browser: no server round trip."""
+    button = pn.widgets.Button(**caption(label), **look("light"), margin=(2, 3),
+                               sizing_mode="stretch_width", css_classes=[f"export-{css}"],
+                               stylesheets=[BUTTON_CSS],
+                               description="saves the figure as a vector graphic (SVG)")
+    button.js_on_click(args={"names": list(names), "prefix": prefix}, code=SVG_JS)
+    return button

@@ -27,6 +27,7 @@ from ..urlstate import TABS
 from .array import ArrayView
 from .arrays import LoadView, RegimeMapView
 from .browser import PageBehaviour
+from .export import ResultDownload, svg_button
 from .code import CodeView
 from .controls import Controls
 from .design import DesignView
@@ -108,16 +109,17 @@ class Dashboard(pn.viewable.Viewer):
                                     label="Trajectory CSV", css_classes=["download-trajectory"],
                                     **look("light"), sizing_mode="stretch_width",
                                     margin=(2, 3), stylesheets=[BUTTON_CSS]),
-            pn.widgets.FileDownload(callback=self._polar_csv, filename="polar_sweep.csv",
-                                    label="Polar sweep CSV", css_classes=["download-polar"],
-                                    **look("light"), sizing_mode="stretch_width",
-                                    margin=(2, 3), stylesheets=[BUTTON_CSS])]
+            # Offered once the sweep is there ("computing…" until then, app.views.export).
+            ResultDownload(lambda: self._polar_csv().getvalue(), "polar_sweep.csv", "polar",
+                           results=results, name="polar", label="Polar sweep CSV")]
         self.help = pn.pane.Markdown(HELP, styles={"font-size": "0.85em", "color": "#555"},
                                      margin=(0, 10), visible=not state.projector)
         self.code = CodeView(**views)
         self.controls = Controls(state, extra=[
-            pn.pane.Markdown("**Download** (CSV)", margin=(4, 10, 0, 10)),
+            pn.pane.Markdown("**Download** (CSV; the figures on screen as SVG)",
+                             margin=(4, 10, 0, 10)),
             pn.Row(*self.downloads, sizing_mode="stretch_width"),
+            svg_button(label="Figures on screen (SVG)", css="page-svg"),
             pn.pane.Markdown("**Animation of the support** (for slides)",
                              margin=(4, 10, 0, 10)),
             self.support.export, self.code, self.help])
@@ -305,7 +307,7 @@ class Dashboard(pn.viewable.Viewer):
         s = self.state
         tag = f"kr{s.k_r:.3g}_kt{s.k_theta:.3g}_FN{s.F_N:.3g}"
         self.downloads[0].filename = f"trajectory_{tag}_theta0_{s.theta0:g}.csv"
-        self.downloads[1].filename = f"polar_{tag}.csv"
+        self.downloads[1].download.filename = f"polar_{tag}.csv"
 
     def __panel__(self):
         header = pn.Row(

@@ -16,7 +16,8 @@ from model.quantities import readout
 from ..figures.arrays import AVERAGE_COLUMNS
 from ..results import SessionResults
 from ..state import ExplorerState
-from ..texts import MECHANISMS
+from ..motion_words import change_words, regime_markdown
+from ..texts import AVERAGE_NAMES, FELT_AVERAGE, FELT_WORDS
 from .compare_tables import difference
 
 TABLE_CSS = ("table {border-collapse: collapse; width: 100%;} "
@@ -27,27 +28,20 @@ def _fmt(x, digits: int = 4) -> str:
     return "–" if x is None or not math.isfinite(x) else f"{x:.{digits}g}"
 
 
-def change_words(ratio: float | None) -> str:
-    """F_T,x/(mu0 F_N) in words: how far friction lies below (or above) a rigid surface,
-    on which every support would slide at the full speed and F_T,x = mu0 F_N."""
-    if ratio is None or not math.isfinite(ratio):
-        return "not available"
-    percent = 100.0 * (1.0 - ratio)
-    if abs(percent) < 0.05:
-        return "the same as on a rigid surface"
-    return f"{abs(percent):.1f} % {'below' if percent > 0 else 'above'} a rigid surface"
-
-
-def headline_text(fixed: float | None, theta0_deg: float, uniform: float | None,
-                  uniform_note: str = "") -> str:
-    """The page's one-line result, e.g. "Friction is 5.5 % below a rigid surface (every
-    support at θ₀ = 90°); averaged over all orientations: 5.5 % below a rigid surface."
-    ``fixed`` and ``uniform`` are F_T,x/(mu0 F_N) of the fixed and uniform arrays;
-    ``uniform_note`` stands in for a uniform value not (yet) there."""
+def headline_text(fixed: float | None, theta0_deg: float, felt: float | None,
+                  felt_note: str = "") -> str:
+    """The page's one-line result, e.g. "Friction is 16.2 % below a rigid surface (every
+    support at θ₀ = 90°); with supports of all orientations the slab feels 15.5 % below a
+    rigid surface (each support counted for as long as it touches the slab)."
+    ``fixed`` is F_T,x/(mu0 F_N) of the fixed array, ``felt`` the uniform array's
+    duration-weighted average (``app.texts.FELT_AVERAGE``: the force the slab feels; the
+    paper's Eq. 10 average is in the folded details); ``felt_note`` stands in for a uniform
+    value not (yet) there."""
     first = (f"Friction is {change_words(fixed)} (every support at θ₀ = {theta0_deg:g}°)"
              if fixed is not None else "Friction: being computed")
-    second = change_words(uniform) if uniform is not None else (uniform_note or "being computed")
-    return f"{first}; averaged over all orientations: {second}."
+    second = (f"{change_words(felt)} ({FELT_WORDS})" if felt is not None
+              else (felt_note or "being computed"))
+    return f"{first}; with supports of all orientations the slab feels {second}."
 
 
 def _short_words(ratio: float | None) -> str:
@@ -63,15 +57,10 @@ def pinned_clause(a_fixed: float | None, a_theta0_deg: float, a_uniform: float |
                   fixed: float | None, uniform: float | None) -> str:
     """The headline's clause about a pinned state A: its friction as ``headline_text``
     says B's, and B − A of F_T,x/(mu0 F_N), fixed and averaged, e.g. "A (pinned): 8.1 %
-    below at θ₀ = 60°, averaged: 4.9 % below; B − A = −0.026, −0.011 (F_T,x/μ₀F_N)"."""
+    below at θ₀ = 60°, all orientations: 4.9 % below; B − A = −0.026, −0.011 (F_T,x/μ₀F_N)"."""
     d_fixed, d_uniform = difference(a_fixed, fixed)[0], difference(a_uniform, uniform)[0]
-    return (f"A (pinned): {_short_words(a_fixed)} at θ₀ = {a_theta0_deg:g}°, averaged: "
+    return (f"A (pinned): {_short_words(a_fixed)} at θ₀ = {a_theta0_deg:g}°, all orientations: "
             f"{_short_words(a_uniform)}; B − A = {d_fixed}, {d_uniform} (F_T,x/μ₀F_N)")
-
-
-def regime_markdown(regime: str) -> str:
-    title, text = MECHANISMS[regime]
-    return f"**{title}.** {text}"
 
 
 #: The fixed array's readout: quantities of the registry (``model.quantities``), whose
@@ -99,19 +88,17 @@ def fixed_markdown(data) -> str:
 
 
 def uniform_markdown(row: dict | None, average: str, note: str = "") -> str:
-    """The uniform array (theta0 uniform on [0, 2 pi)); the chosen average in bold."""
+    """The uniform array (theta0 uniform on [0, 2 pi)): both averages of its friction, the
+    slab's (the headline's) first; the one the plots use (``average``) in bold."""
     if row is None:
         return f"| Uniform array | |\n|:--|--:|\n| F_T,x/(μ₀F_N) | {note or '…'} |"
-    paper, duration = _fmt(row["FTx_over_mu0FN"]), _fmt(row["FTx_over_mu0FN_duration"])
-    if average == "paper":
-        paper = f"**{paper}**"
-    else:
-        duration = f"**{duration}**"
-    rows = [("friction F_T,x/(μ₀F_N), paper (Eq. 10)", paper),
-            ("friction F_T,x/(μ₀F_N), duration-weighted", duration),
-            ("dissipated across / along, D_y/D_x", _fmt(row["Dy_over_Dx"])),
-            ("contacts, N_c/N_c0", _fmt(row["Nc_over_Nc0"])),
-            ("quadrature error", _fmt(row["quadrature_error_FTx"], 2))]
+    order = (FELT_AVERAGE, *(a for a in AVERAGE_NAMES if a != FELT_AVERAGE))
+    rows = [(f"friction F_T,x/(μ₀F_N), {AVERAGE_NAMES[a]}",
+             f"**{_fmt(row[AVERAGE_COLUMNS[a]])}**" if a == average
+             else _fmt(row[AVERAGE_COLUMNS[a]])) for a in order]
+    rows += [("dissipated across / along, D_y/D_x", _fmt(row["Dy_over_Dx"])),
+             ("contacts, N_c/N_c0", _fmt(row["Nc_over_Nc0"])),
+             ("quadrature error", _fmt(row["quadrature_error_FTx"], 2))]
     body = "\n".join(f"| {k} | {v} |" for k, v in rows)
     warn = "" if row.get("success", True) else (
         f"\n\n⚠ not every member finished its contact ({row.get('n_failed', 0)} failed)")
@@ -119,10 +106,11 @@ def uniform_markdown(row: dict | None, average: str, note: str = "") -> str:
 
 
 #: The numbers compared between a pinned state A and the current B: (label, fixed-array
-#: quantity of the registry, or None for the uniform array's F_T,x of the chosen average).
+#: quantity of the registry, or None for the uniform array's F_T,x the slab feels, as the
+#: headline gives it).
 COMPARED = (("F_T,x/(μ₀F_N)", "FTx_over_mu0FN"), ("F_T,y/(μ₀F_N)", "FTy_over_mu0FN"),
             ("D_y/D_x", "Dy_over_Dx"), ("N_c/N_c0", "Nc_over_Nc0"),
-            ("all θ₀: F_T,x/(μ₀F_N)", None))
+            ("all θ₀, the slab feels: F_T,x/(μ₀F_N)", None))
 
 
 def _settings(p) -> str:
@@ -130,7 +118,7 @@ def _settings(p) -> str:
             f"θ₀ = {round(math.degrees(p.theta0), 6):g}°")
 
 
-def compared_values(support, uniform: dict | None, average: str) -> list:
+def compared_values(support, uniform: dict | None, average: str = FELT_AVERAGE) -> list:
     """The ``COMPARED`` numbers of one state (None where not computed)."""
     fixed = support.fixed if support is not None else None
     return [(uniform or {}).get(AVERAGE_COLUMNS[average]) if name is None
@@ -138,7 +126,8 @@ def compared_values(support, uniform: dict | None, average: str) -> list:
             for _, name in COMPARED]
 
 
-def compare_markdown(a_support, b_support, a_uniform, b_uniform, average: str) -> str:
+def compare_markdown(a_support, b_support, a_uniform, b_uniform,
+                     average: str = FELT_AVERAGE) -> str:
     """A (pinned) and B (current) side by side: the fixed array at each one's theta0 and
     the uniform array, with B - A and, under it, its change relative to A."""
     rows = []
@@ -164,7 +153,8 @@ class ReadoutsView(pn.viewable.Viewer):
         style = {"font-size": "0.92em"}
         compact = [TABLE_CSS]
         wide = dict(sizing_mode="stretch_width", margin=(0, 5))
-        self.regime_pane = pn.pane.Markdown(regime_markdown(self.state.regime),
+        self.regime_pane = pn.pane.Markdown(regime_markdown(self.state.regime,
+                                                            self.results.support),
                                             css_classes=["readout-regime"], styles=style, **wide)
         self.fixed_pane = pn.pane.Markdown(fixed_markdown(self.results.support),
                                            css_classes=["readout-fixed"], styles=style,
@@ -189,9 +179,10 @@ class ReadoutsView(pn.viewable.Viewer):
     def _on_support(self) -> None:
         self.fixed_pane.object = fixed_markdown(self.results.support)
 
-    @param.depends("state.k_r", "state.k_theta", watch=True)
+    @param.depends("results.support", watch=True)
     def _on_regime(self) -> None:
-        self.regime_pane.object = regime_markdown(self.state.regime)
+        # Written from the computed support (its own regime): numbers and words agree.
+        self.regime_pane.object = regime_markdown(self.state.regime, self.results.support)
 
     @param.depends("results.uniform", "results.errors", "state.average", watch=True)
     def _show_uniform(self) -> None:
@@ -201,14 +192,14 @@ class ReadoutsView(pn.viewable.Viewer):
             "failed" if failed else "")
 
     @param.depends("results.support", "results.uniform", "results.support_A",
-                   "results.uniform_A", "state.pinned", "state.average", watch=True)
+                   "results.uniform_A", "state.pinned", watch=True)
     def _compare(self) -> None:
         r = self.results
         on = self.state.pinned is not None
         self.compare_pane.visible = on
         if on:
             self.compare_pane.object = compare_markdown(r.support_A, r.support, r.uniform_A,
-                                                        r.uniform, self.state.average)
+                                                        r.uniform)
 
     @param.depends("results.busy", watch=True)
     def _busy(self) -> None:
@@ -239,15 +230,16 @@ class HeadlineView(pn.viewable.Viewer):
         self.pane.visible = self.state.tab != "design"
 
     def _numbers(self, data, row, failed: bool = False):
-        """F_T,x/(mu0 F_N) of the fixed array and the uniform one, and theta0 in degrees."""
+        """F_T,x/(mu0 F_N) of the fixed array and the uniform one (the average the slab
+        feels), and theta0 in degrees."""
         fixed = theta0 = None
         if data is not None and data.fixed is not None:
             fixed = data.fixed.FTx_over_mu0FN
             theta0 = round(math.degrees(data.params.theta0), 6)
-        uniform = None if failed or row is None else row[AVERAGE_COLUMNS[self.state.average]]
+        uniform = None if failed or row is None else row[AVERAGE_COLUMNS[FELT_AVERAGE]]
         return fixed, theta0, uniform
 
-    @param.depends("results.support", "results.uniform", "results.errors", "state.average",
+    @param.depends("results.support", "results.uniform", "results.errors",
                    "results.support_A", "results.uniform_A", "state.pinned", watch=True)
     def _write(self) -> None:
         failed = bool(self.results.errors.get("uniform"))
