@@ -123,7 +123,9 @@ window.__mpf_active = frame.id;
 
 #: Longest interval between updates of the slider and readout while playing [ms].
 UI_MS = 120
-#: Milliseconds after a served page is up before the player says it is ready (``ready_soon``).
+#: Milliseconds after a served page is up before the player says it is ready (``ready``): the
+#: change must reach the browser after the player's models, which a page sends a turn or
+#: two later (a page built once opened, a result's new figures).
 READY_DELAY_MS = 300
 
 
@@ -176,12 +178,6 @@ class BrowserPlayer:
     def ready(self) -> None:
         """The same from the server (inside Panel): a property change the browser sees."""
         self.play.tags = [*self.play.tags, "ready"]
-
-    def ready_soon(self, doc) -> None:
-        """``ready()`` ``READY_DELAY_MS`` after now, from a served page that is up: the
-        change must reach the browser after the player's models, which a page sends a
-        turn or two later (a page built once opened, a result's new figures)."""
-        doc.add_timeout_callback(self.ready, READY_DELAY_MS)
 
 
 def browser_player(n_frames: int, times=None, fps: float = 30.0, autoplay: bool = False,

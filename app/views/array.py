@@ -15,7 +15,7 @@ import param
 from bokeh.layouts import column
 
 from ..figures.array_scene import array_scene
-from ..figures.player import browser_player
+from ..figures.player import READY_DELAY_MS, browser_player
 from ..results import SessionResults
 from ..state import ExplorerState
 from .export import AnimationExport
@@ -59,7 +59,8 @@ class ArrayView(pn.viewable.Viewer):
             # Keys and autoplay start with a change the page sees: once the page has loaded
             # (a result that came before), or once the new models are in a loaded page.
             player, doc = self.player, self._doc
-            pn.state.onload(lambda: player.ready_soon(doc))
+            pn.state.onload(lambda: pn.state.add_periodic_callback(
+                player.ready, period=READY_DELAY_MS, count=1))
         m = motion.model
         self.status.object = (
             f"{motion.n_supports} supports on a {motion.n_rows} × {motion.n_cols} grid, "
