@@ -6,10 +6,10 @@ have yet would stop the page). Seen from a protocol-level browser stand-in
 BokehJS does, and fails on a model it does not know."""
 from __future__ import annotations
 
-import asyncio
+import json
 import os
+import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
@@ -34,39 +34,45 @@ def served(tmp_path_factory):
             pytest.fail(str(error), pytrace=False)
 
 
-def _load_client():
-    sys.path.insert(0, str(ROOT / "benchmarks"))
-    import load_client
-    return load_client
+#: Run in ``benchmarks/`` (the client is a benchmark's module): open a page, wait for its
+#: first plot and a quiet moment, move θ₀ and wait until the readout shows it and two
+#: quiet seconds more; print the messages received after the move as
+#: [[seconds after, [[kind, attribute], ...]], ...] and the client's errors, as JSON.
+_MOVE = """
+import asyncio, json, sys, time
+import load_client as lc
+
+async def main(base, degrees):
+    session = lc.Session(0, base)
+    await session.open()
+    await session.first_plot()
+    await asyncio.sleep(2.0)
+    before, sent = session.patches, time.perf_counter()
+    await session._set("theta0", degrees)
+    deadline = sent + 60
+    while not session._readout_shows(degrees) and time.perf_counter() < deadline \\
+            and not session.errors:
+        await asyncio.sleep(0.05)
+    await asyncio.sleep(2.0)
+    count = session.patches - before
+    received = [(t - sent, events) for t, events in list(session.recent)[-count:]] \\
+        if count else []
+    errors = list(session.errors)
+    if not session._readout_shows(degrees):
+        errors.append(f"the readout never showed theta0 = {degrees:g}")
+    session.socket.close()
+    print(json.dumps([received, errors]))
+
+asyncio.run(main(sys.argv[1], float(sys.argv[2])))
+"""
 
 
 def _moved(base: str, degrees: float = 33.0) -> tuple[list, list]:
-    """Open a page, wait for its first plot and a quiet second, move θ₀ and wait until
-    the readout shows it and two quiet seconds more: (the messages received after the
-    move as [(seconds after, [(kind, attribute)])], the client's errors)."""
-    lc = _load_client()
-
-    async def main():
-        session = lc.Session(0, base)
-        await session.open()
-        await session.first_plot()
-        await asyncio.sleep(2.0)
-        before, sent = session.patches, time.perf_counter()
-        await session._set("theta0", degrees)
-        deadline = sent + 60
-        while not session._readout_shows(degrees) and time.perf_counter() < deadline \
-                and not session.errors:
-            await asyncio.sleep(0.05)
-        await asyncio.sleep(2.0)
-        count = session.patches - before
-        received = [(t - sent, events) for t, events in list(session.recent)[-count:]] \
-            if count else []
-        errors = list(session.errors)
-        if not session._readout_shows(degrees):
-            errors.append(f"the readout never showed θ₀ = {degrees:g}°")
-        session.socket.close()
-        return received, errors
-    return asyncio.run(main())
+    done = subprocess.run([sys.executable, "-c", _MOVE, base, str(degrees)],
+                          cwd=ROOT / "benchmarks", capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-3000:]
+    received, errors = json.loads(done.stdout.strip().splitlines()[-1])
+    return received, errors
 
 
 def test_a_slider_move_reaches_the_page_in_a_few_whole_messages(served):
