@@ -239,8 +239,15 @@ def browser_player(n_frames: int, times=None, fps: float = 30.0, autoplay: bool 
     # The slider dragged: jump there (the timer, when playing, goes on from there).
     slider.js_on_change("value", CustomJS(args=args, code=_PRELUDE + """
         if (slider.value !== frame.value) st.set(slider.value);"""))
-    ready_js = CustomJS(args=dict(**args, autoplay=bool(autoplay)),
-                        code=_PRELUDE + "if (autoplay && !play.active) play.active = true;")
+    # Autoplay. In a page sent in a patch, BokehJS draws the views over several turns, and
+    # the play button's view throws on a change before it is drawn: then try again soon.
+    ready_js = CustomJS(args=dict(**args, autoplay=bool(autoplay)), code=_PRELUDE + """
+        const go = () => {
+          if (!autoplay || play.active) return;
+          try { play.active = true; }
+          catch (error) { play.setv({active: false}, {silent: true}); st.stop(); setTimeout(go, 100); }
+        };
+        go();""")
     play.js_on_change("tags", ready_js)
     wrap = {"styles": {"flex-wrap": "wrap"}, "sizing_mode": "stretch_width"} if responsive else {}
     if responsive:  # one row that wraps: buttons, then the slider taking what is left
