@@ -33,6 +33,7 @@ import time
 
 from .lanes import DEFAULT_BUDGET_S, LANES, Job, Lane, LaneRunner
 from .result_cache import CACHE_SIZE, ResultCache
+from .trace import mark
 
 __all__ = ["WorkPool", "Lane", "LANES", "ServerBusy", "OverBudget", "work_pool", "warm_up",
            "load_scale"]
@@ -186,6 +187,7 @@ class WorkPool:
                 executor = runner._executor()
                 inner = executor.submit(job.fn, *job.args, **job.kwargs)
             job.started = time.monotonic()
+            mark("worker starts", lane=runner.lane.name)
             runner.running[inner] = job
             runner.started += 1
             inner.add_done_callback(
@@ -224,6 +226,7 @@ class WorkPool:
 
     def _done(self, runner: LaneRunner, job: Job, inner: cf.Future, executor=None) -> None:
         error = inner.exception() if not inner.cancelled() else cf.CancelledError()
+        mark("worker ends", lane=runner.lane.name)
         runner.note(inner, executor)
         with self._lock:
             runner.running.pop(inner, None)

@@ -26,6 +26,7 @@ import panel as pn
 from bokeh.models import CustomJS
 
 from .edge import guard_markup_views
+from .trace import mark
 from .views.widgets import caption, look
 
 log = logging.getLogger(__name__)
@@ -113,6 +114,7 @@ def answer_each_event_in_one_message() -> None:
         if event.new:
             doc = pn.state.curdoc
             if doc is not None and doc.session_context is not None:
+                mark("server receives")
                 hold = pn.io.hold(doc)
                 hold.__enter__()
                 _HOLDS.append(hold)
@@ -120,6 +122,7 @@ def answer_each_event_in_one_message() -> None:
         while len(_HOLDS) > 1:
             try:
                 _HOLDS.pop().__exit__(None, None, None)
+                mark("answer sent")
             except Exception:
                 log.exception("a page's changes could not be sent")
     pn.state.param.watch(on_busy, "busy")

@@ -20,6 +20,7 @@ from typing import Callable
 import panel as pn
 
 from .jobs import work_pool
+from .trace import mark
 
 log = logging.getLogger(__name__)
 
@@ -145,6 +146,7 @@ class Slot:
 
     # ------------------------------------------------------------------ running
     def _start(self, req: Request) -> cf.Future:
+        mark("job submitted", slot=self.name)
         return work_pool().submit(req.lane, req.key, req.fn, *req.args,
                                   session=self.owner.session_id,
                                   client=getattr(self.owner, "client", None),
@@ -248,8 +250,10 @@ class Slot:
             if self.closed:
                 return
             try:
+                mark("result applied", slot=self.name)
                 with pn.io.hold(doc):
                     fn(*args)
+                mark("result sent", slot=self.name)
             except Exception:
                 log.exception("dashboard update failed")
         try:

@@ -61,3 +61,20 @@ def browser_page():
             yield page
         finally:
             browser.close()
+
+
+def pages_failing(app, error: str, rounds: int) -> int:
+    """Open ``app``'s page ``rounds`` times; print and count the pages whose browser
+    logged an error containing ``error``."""
+    failed = 0
+    with served(app) as url, browser_page() as browser:
+        for _ in range(rounds):
+            browser.errors.clear()
+            browser.goto(url)
+            time.sleep(3.0)
+            found = [e for e in browser.errors if error in e]
+            failed += bool(found)
+            print(found[:1] or "page fine")
+    print(f"REPRODUCED on {failed} of {rounds} pages" if failed
+          else f"not reproduced on {rounds} pages")
+    return failed

@@ -24,13 +24,11 @@ hold, so Panel's own queue keeps the order (``app/slot.py``: results applied und
 busy with it; timed changes through ``pn.state.add_periodic_callback``, which Panel marks
 busy).
 """
-import time
-
 import numpy as np
 import panel as pn
 from bokeh.plotting import figure
 
-from harness import browser_page, served
+from harness import pages_failing
 
 ROUNDS = 6
 
@@ -56,15 +54,4 @@ def page():
 
 
 if __name__ == "__main__":
-    failed = 0
-    with served(page) as url, browser_page() as browser:
-        for _ in range(ROUNDS):
-            browser.errors.clear()
-            browser.goto(url)
-            browser.wait_for_function("() => window.Bokeh && Bokeh.documents.length > 0")
-            time.sleep(3.0)
-            unknown = [e for e in browser.errors if "isn't known" in e]
-            failed += bool(unknown)
-            print(unknown[:1] or "page fine")
-    print(f"REPRODUCED on {failed} of {ROUNDS} pages" if failed
-          else f"not reproduced on {ROUNDS} pages")
+    pages_failing(page, "isn't known", ROUNDS)
