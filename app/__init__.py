@@ -5,11 +5,13 @@ Data flows one way: the controls (``state.ExplorerState``, mirrored in the URL b
 (each result a ``slot.Slot``) and hands it to the server's worker processes (``jobs``: the work pool,
 ``lanes``: its workers and fair queues, ``result_cache``: shared results; ``worker``: the
 functions they run; ``pages``: the page gate; ``opening``: a light page at once, the
-dashboard once the browser has it; ``patches``: a session's update sent as one message) -> the views (``views``), renderers that
+dashboard once the browser has it, each update in one message; ``edge``: the server's
+guards on Panel's internals, on the tested versions only) -> the views (``views``), renderers that
 declare which results they draw (``param.depends``) with the figure functions of
 ``figures``. Also: ``reproduce`` (the paper's figures drawn), ``healthcheck`` (the
 container health check), ``export`` (CSV) and ``texts``; ``main.py`` builds the page and
-``app_hooks.py`` warms the kernel and the workers when the server starts.
+``app_hooks.py`` warms the kernel and the workers and installs the guards when the server
+starts; ``trace``: timestamps along an update for the benchmarks.
 
 ``app`` is an ordinary installed package (``pip install .`` or ``pip install -e .``
 installs it beside ``model``): ``panel serve app`` runs ``app/main.py``, which imports

@@ -58,7 +58,8 @@ def open_dashboard(base_url: str, query: str = "", timeout: float = 25.0):
     """Open ``base_url/app`` + ``query`` as a browser does -- the page, its websocket, the
     document, then ``document_ready`` -- and return the page's Bokeh document once the
     dashboard has arrived in it (or the document as sent, when it is not the explorer's
-    page). Raises ``TimeoutError`` after ``timeout`` seconds. (Bokeh's synchronous client,
+    page). The session is opened with a token of its own (``bokeh.util.token``), so no
+    page is fetched. Raises ``TimeoutError`` after ``timeout`` seconds. (Bokeh's synchronous client,
     ``pull_session``, drops the messages that arrive while it waits for a reply, so it
     never sees the dashboard.)"""
     import asyncio
@@ -72,7 +73,7 @@ def open_dashboard(base_url: str, query: str = "", timeout: float = 25.0):
 
 
 async def _open(base: str, query: str, timeout: float):
-    import re
+    from urllib.parse import parse_qs
 
     # The page's model types, registered so the client can read the page: Panel's, and
     # the app's own (a Bokeh document naming a type the client lacks cannot be opened).
@@ -84,19 +85,20 @@ async def _open(base: str, query: str, timeout: float):
     from bokeh.events import DocumentReady
     from bokeh.protocol import Protocol
     from bokeh.protocol.receiver import Receiver
-    from tornado.httpclient import AsyncHTTPClient, HTTPRequest
+    from bokeh.util.token import generate_jwt_token, generate_session_id
+    from tornado.httpclient import HTTPRequest
     from tornado.websocket import websocket_connect
 
-    page = await AsyncHTTPClient().fetch(f"{base}/app{query}", request_timeout=timeout)
-    match = re.search(r'"token"\s*:\s*"([^"]+)"', page.body.decode("utf-8", "replace"))
+    # A session of its own, as Bokeh's clients open one (``bokeh.util.token``): the
+    # page's arguments travel in the token, as Bokeh's page handler puts them there.
+    arguments = {k: [v.encode() for v in vs]
+                 for k, vs in parse_qs(query.lstrip("?"), keep_blank_values=True).items()}
+    token = generate_jwt_token(generate_session_id(), extra_payload={
+        "headers": {}, "cookies": {}, "arguments": arguments})
     doc = Document()
-    if match is None:  # not a Bokeh page (the busy page, an error page): its title only
-        title = re.search(r"<title>([^<]*)</title>", page.body.decode("utf-8", "replace"))
-        doc.title = title.group(1).strip() if title else ""
-        return doc
     url = base.replace("http", "ws", 1) + "/app/ws"
     socket = await websocket_connect(HTTPRequest(url, request_timeout=timeout),
-                                     subprotocols=["bokeh", match.group(1)],
+                                     subprotocols=["bokeh", token],
                                      max_message_size=50 * 2**20)
     connection, protocol = WebSocketClientConnectionWrapper(socket), Protocol()
     receiver = Receiver(protocol)

@@ -33,6 +33,7 @@ import time
 
 from .lanes import DEFAULT_BUDGET_S, LANES, Job, Lane, LaneRunner
 from .result_cache import CACHE_SIZE, ResultCache
+from .trace import mark
 
 __all__ = ["WorkPool", "Lane", "LANES", "ServerBusy", "OverBudget", "work_pool", "warm_up",
            "load_scale"]
@@ -179,14 +180,18 @@ class WorkPool:
             if job is None:
                 return
             try:
-                inner = runner._executor().submit(job.fn, *job.args, **job.kwargs)
+                executor = runner._executor()
+                inner = executor.submit(job.fn, *job.args, **job.kwargs)
             except (cf.process.BrokenProcessPool, RuntimeError):
                 runner.executor = None  # a dead pool: start anew
-                inner = runner._executor().submit(job.fn, *job.args, **job.kwargs)
+                executor = runner._executor()
+                inner = executor.submit(job.fn, *job.args, **job.kwargs)
             job.started = time.monotonic()
+            mark("worker starts", lane=runner.lane.name)
             runner.running[inner] = job
             runner.started += 1
-            inner.add_done_callback(lambda f, job=job, runner=runner: self._done(runner, job, f))
+            inner.add_done_callback(
+                lambda f, job=job, runner=runner, ex=executor: self._done(runner, job, f, ex))
 
     def _ensure_watchdog(self) -> None:
         if self._watchdog is None or not self._watchdog.is_alive():
@@ -219,8 +224,10 @@ class WorkPool:
                                     runner.lane.name, job.budget_s)
                     runner.stop_workers()
 
-    def _done(self, runner: LaneRunner, job: Job, inner: cf.Future) -> None:
+    def _done(self, runner: LaneRunner, job: Job, inner: cf.Future, executor=None) -> None:
         error = inner.exception() if not inner.cancelled() else cf.CancelledError()
+        mark("worker ends", lane=runner.lane.name)
+        runner.note(inner, executor)
         with self._lock:
             runner.running.pop(inner, None)
             if job.over_budget:

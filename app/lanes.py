@@ -83,27 +83,43 @@ class LaneRunner:
         self.queues: OrderedDict[object, OrderedDict] = OrderedDict()
         self.running: dict = {}  # inner future -> job
         self.executor = None
+        self.broken = None        # why the pool's workers stopped (BrokenProcessPool)
+        self.processes: set = set()  # the pool's worker processes
         self.started = 0  # jobs handed to the executor (statistics)
         self.created_at = 0.0     # monotonic time the current workers were started
         self.ready_at = None      # ... and the time the first of them answered
 
     def _executor(self):
-        if self.executor is None or getattr(self.executor, "_broken", False):
+        if self.executor is None or self.broken is not None:
             if self.executor is not None:
                 log.warning("dashboard workers of lane %r stopped (%s); starting new ones",
-                            self.lane.name, self.executor._broken)
+                            self.lane.name, self.broken)
+                self.executor.shutdown(wait=False, cancel_futures=True)
+            before = set(multiprocessing.active_children())
             self.executor = cf.ProcessPoolExecutor(
                 max_workers=self.lane.workers, mp_context=multiprocessing.get_context("spawn"),
                 initializer=_init_worker, initargs=(self.lane.nice,))
+            self.broken = None
             self.created_at, self.ready_at = time.monotonic(), None
             self._ping(self.executor)
+            # The pool starts a process per submitted ping while none is idle: these.
+            self.processes = set(multiprocessing.active_children()) - before
         return self.executor
+
+    def note(self, future: cf.Future, executor) -> None:
+        """Note a finished future of a job or ping sent to ``executor``: if that is this
+        lane's pool and a worker of it died, it is replaced at the next job
+        (``BrokenProcessPool``, the pool's own word for it)."""
+        if executor is self.executor and not future.cancelled() \
+                and isinstance(future.exception(), cf.process.BrokenProcessPool):
+            self.broken = future.exception()
 
     def _ping(self, executor) -> None:
         """Start every worker at once; note when the first one answers."""
         from .worker import ping
 
-        def answered(_future):
+        def answered(future):
+            self.note(future, executor)
             if self.executor is executor and self.ready_at is None:
                 self.ready_at = time.monotonic()
         for _ in range(self.lane.workers):
@@ -156,9 +172,10 @@ class LaneRunner:
         self.created_at, self.ready_at = time.monotonic(), None
         if executor is None:
             return
-        for process in list(getattr(executor, "_processes", {}).values()):
+        for process in self.processes:
             try:
                 process.kill()
             except Exception:  # already gone
                 pass
+        self.processes = set()
         executor.shutdown(wait=False, cancel_futures=True)

@@ -13,14 +13,15 @@ nothing.
 """
 import panel as pn
 
-from app.app_hooks import guard_query_parsing
+from app.edge import guard_query_parsing, on_tested_stack
 from app.opening import BUSY_TITLE, TITLE, build_when_opened, busy_page, loading_shell
 from app.page_template import use_page_template
 from app.pages import page_gate, schedule_release, sessions_of
 from app.results import client_address
 from app.views import Dashboard
 
-guard_query_parsing()  # already done by the server hook; kept for `panel serve app/main.py`
+if on_tested_stack():  # done by the server hook already; for `panel serve app/main.py`
+    guard_query_parsing()
 pn.extension("mathjax", notifications=False)
 use_page_template(pn.state.curdoc)  # <meta name="viewport">: phones use their own width
 

@@ -8,14 +8,13 @@ seconds. So:
 
 * the request gets a **light page** (``loading_shell``: the title and a spinner, ~25 ms);
 * the **dashboard is built when a browser opens the page** (Panel's ``onload``, the page's
-  ``document_ready``; ``build_when_opened``), in three turns of the event loop: its Python
-  objects, then its models (held), then the message that sends them
-  (``app.patches.hold_until_next_tick``); its updates wait until the browser says it has drawn the
-  page. Other requests are answered between the turns, and a page that is never opened
-  (a script fetching URLs) costs the light page only;
+  ``document_ready``; ``build_when_opened``), in two turns of the event loop: its Python
+  objects, then its models, sent in one message (``pn.io.hold``). Other requests are
+  answered between the turns, and a page that is never opened (a script fetching URLs)
+  costs the light page only;
 * a client whose unopened pages fill its place in the page gate (``app.pages.PageGate``)
   gets the **busy page**, answered before any Bokeh session is made (``BUSY_HTML``, ~1 ms:
-  ``app.app_hooks.answer_busy_before_building``), or as a Panel page (``busy_page``) when
+  ``app.edge.answer_busy_before_building``), or as a Panel page (``busy_page``) when
   the app runs without its server hooks (``panel serve app/main.py``).
 """
 from __future__ import annotations
@@ -26,7 +25,8 @@ import logging
 import panel as pn
 from bokeh.models import CustomJS
 
-from .patches import hold_patches, hold_until_next_tick
+from .edge import guard_markup_views
+from .trace import mark
 from .views.widgets import caption, look
 
 log = logging.getLogger(__name__)
@@ -40,8 +40,6 @@ BUSY_TEXT = ("It is still building several pages for your address that have not 
 #: away at once does not come back at once).
 AUTO_RELOAD_JS = "setTimeout(() => window.location.reload(), 3000 + 3000 * Math.random());"
 OPENING_TEXT = "Opening the explorer&hellip;"
-#: Seconds the page's updates wait at most for the browser to say it has drawn the page.
-SHOWN_WITHIN_S = 10.0
 FAILED_TEXT = ("**The page could not be built.** The server's log says why; reloading the "
                "page tries again.")
 
@@ -72,26 +70,6 @@ def busy_page(doc=None):
 SHELL_CSS = ":host(.page-shell) { display: contents !important; }"
 
 
-#: Panel's text views (``PanelMarkupView``: HTML, Markdown, alerts, spinners) make their
-#: ``container`` when first drawn, and their handler of ``visible`` uses it at once: a page
-#: sent in a patch has views that BokehJS builds at once but draws over later turns (the
-#: tabs not on show last), so a change of ``visible`` in between threw "Cannot read
-#: properties of undefined (reading 'style')" and stopped the rest of that message. Until
-#: a view is drawn its ``container`` is a detached stand-in (the drawing reads the model's
-#: state anew). Installed with the light page, before the dashboard arrives.
-MARKUP_GUARD_JS = """
-const html = Bokeh.Models.get("panel.models.markup.HTML");
-const base = html == null ? null : Object.getPrototypeOf(html.prototype.default_view.prototype);
-if (base != null && Object.getOwnPropertyDescriptor(base, "container") == null) {
-  Object.defineProperty(base, "container", {
-    configurable: true,
-    get() { return this._drawn_container ?? document.createElement("div"); },
-    set(value) { this._drawn_container = value; },
-  });
-}
-"""
-
-
 def loading_shell():
     """The light page a request gets: the dashboard takes its place once opened."""
     return pn.Column(
@@ -104,20 +82,53 @@ def loading_shell():
 def build_when_opened(shell, make, doc=None) -> None:
     """Replace ``shell``'s content by the page ``make()`` builds, once a browser has it.
 
-    Call while the page is built (``doc``: its document). Panel's ``onload`` runs the
-    first turn (``make()``: the page's Python objects; results it asks for start then);
-    the models are made in the next turn, under a hold released on the turn after, when
-    the message carrying them is written (``app.patches.hold_until_next_tick``). Without a server
-    (``doc`` None) the page is built at once.
+    Call while the page is built (``doc``: its document). Panel's ``onload`` runs
+    ``make()`` (the page's Python objects; the results it asks for start then); the
+    page's models are made on the event loop's next turn (``pn.state.execute``), under
+    ``pn.io.hold``, so they leave in one message and other requests are answered in
+    between. Without a server (``doc`` None) the page is built at once.
     """
     if doc is None:
         shell.objects = [make()]
         return
-    doc.js_on_event("document_ready", CustomJS(code=MARKUP_GUARD_JS))
-    pn.state.onload(lambda: _first_turn(shell, make, doc))
+    answer_each_event_in_one_message()
+    guard_markup_views(doc)
+    pn.state.onload(lambda: _build(shell, make))
 
 
-def _first_turn(shell, make, doc) -> None:
+_HOLDS: list = []
+
+
+def answer_each_event_in_one_message() -> None:
+    """What a page does in answer to one event from its browser (a slider moved: busy
+    markers, readouts, the address, download names) reaches the browser in one message.
+
+    Panel marks the time it processes an event from a browser (``pn.state.busy``); the
+    changes made meanwhile are held (``pn.io.hold``) and leave together when it is done.
+    Installed once per process."""
+    if _HOLDS:
+        return
+    _HOLDS.append(None)
+
+    def on_busy(event):
+        if event.new:
+            doc = pn.state.curdoc
+            if doc is not None and doc.session_context is not None:
+                mark("server receives")
+                hold = pn.io.hold(doc)
+                hold.__enter__()
+                _HOLDS.append(hold)
+            return
+        while len(_HOLDS) > 1:
+            try:
+                _HOLDS.pop().__exit__(None, None, None)
+                mark("answer sent")
+            except Exception:
+                log.exception("a page's changes could not be sent")
+    pn.state.param.watch(on_busy, "busy")
+
+
+def _build(shell, make) -> None:
     try:
         page = make()
     except Exception:
@@ -125,45 +136,13 @@ def _first_turn(shell, make, doc) -> None:
         shell.objects = [pn.pane.Alert(FAILED_TEXT, alert_type="danger",
                                        css_classes=["page-failed"])]
         return
-    try:
-        doc.add_next_tick_callback(lambda: _attach(shell, page, doc))
-    except Exception:  # the session closed meanwhile: nothing to show
-        log.debug("session gone before its page was shown")
+    pn.state.execute(lambda: _attach(shell, page), schedule=True)
 
 
-def _attach(shell, page, doc) -> None:
-    """The page's models, held and sent on the next turn; then, if the page can say when
-    the browser has drawn it (``page.when_shown``), its updates kept back until then
-    (begun in the turn that sends the page, so that no update slips in before)."""
-    keep = (lambda: _keep_updates_until_shown(page, doc)) if hasattr(page, "when_shown") \
-        else None
-    hold_until_next_tick(doc, then=keep)
+def _attach(shell, page) -> None:
+    """The page's models, sent as one message."""
     try:
-        shell.objects = [page]
+        with pn.io.hold():
+            shell.objects = [page]
     except Exception:
         log.exception("the dashboard could not be shown")
-
-
-def _keep_updates_until_shown(page, doc) -> None:
-    """Keep the page's update messages back until the browser has drawn ``page``, at most
-    ``SHOWN_WITHIN_S`` (``app.patches.hold_patches``). BokehJS builds the views of a page
-    sent in a patch over several turns of its own; a change reaching a view built but not
-    yet drawn fails in Panel's views ("Cannot read properties of undefined (reading
-    'style')"), and results come in that time (a cached one at once)."""
-    send_kept, done = hold_patches(doc), []
-
-    def show(*_):
-        if not done:
-            done.append(True)
-            send_kept()
-
-    def late():
-        if done:
-            return
-        session = getattr(doc.session_context, "_session", None)
-        if getattr(session, "_subscribed_connections", None):  # a page still open
-            log.warning("the browser did not say within %g s that it had drawn the page; "
-                        "its updates are sent now", SHOWN_WITHIN_S)
-        show()
-    doc.add_timeout_callback(late, int(SHOWN_WITHIN_S * 1000))
-    page.when_shown(show)

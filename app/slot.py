@@ -20,7 +20,7 @@ from typing import Callable
 import panel as pn
 
 from .jobs import work_pool
-from .patches import release
+from .trace import mark
 
 log = logging.getLogger(__name__)
 
@@ -146,6 +146,7 @@ class Slot:
 
     # ------------------------------------------------------------------ running
     def _start(self, req: Request) -> cf.Future:
+        mark("job submitted", slot=self.name)
         return work_pool().submit(req.lane, req.key, req.fn, *req.args,
                                   session=self.owner.session_id,
                                   client=getattr(self.owner, "client", None),
@@ -236,7 +237,8 @@ class Slot:
             doc.on_session_destroyed(self.close)
 
     def _locked(self, fn, *args) -> None:
-        """Run ``fn(*args)`` on the session's document with its lock held."""
+        """Run ``fn(*args)`` on the session's document with its lock held (the event
+        loop's next turn); what it changes reaches the page in one message."""
         if self.closed:
             return
         doc = self._doc
@@ -245,22 +247,15 @@ class Slot:
             return
 
         def locked():
-            # Bokeh's own hold: the changes leave through Bokeh's locked write path when
-            # it is released, in one message (``app.patches.release``). Left to
-            # pn.io.hold alone, Panel 1.9 writes them itself and, under load, can leave a
-            # session's last update unsent.
             if self.closed:
                 return
-            held = doc.callbacks.hold_value
-            if not held:
-                doc.hold("combine")
             try:
-                fn(*args)
+                mark("result applied", slot=self.name)
+                with pn.io.hold(doc):
+                    fn(*args)
+                mark("result sent", slot=self.name)
             except Exception:
                 log.exception("dashboard update failed")
-            finally:
-                if not held:
-                    release(doc)
         try:
             doc.add_next_tick_callback(locked)
         except Exception:  # the session has closed meanwhile

@@ -5,7 +5,7 @@ reload or a colleague's browser shows the same view. ``parse`` never raises: a v
 cannot use (not a number, NaN, infinite, out of range, unknown choice, longer than
 ``MAX_VALUE_CHARS``) is dropped, the control keeps its default, and a notice naming the
 parameter is returned for the page. ``panel_query`` guards Panel's own reading of the
-address (``app/app_hooks.py`` installs it) against the values Panel cannot convert.
+address (``app/edge.py`` installs it) against the values Panel cannot convert.
 
 URL keys (values in the units of the controls):
 

@@ -12,11 +12,14 @@
    its binary buffers -- numpy arrays travel as binary -- and their sizes), the result
    itself taken from the shared cache so the compute is not counted twice; beside it, the
    same changes serialised one message each, as Bokeh's ``unhold()`` sends them (what
-   ``app.patches.release`` saves).
+   one ``pn.io.hold`` saves).
 3. In headless Chromium (Debian's ``/usr/bin/chromium`` through Playwright, as the
    browser tests): ``panel serve app`` is started, the page load time is taken, and the
    theta0 slider is moved by key presses; each press is timed from ``keydown`` until the
-   orbit data has changed (``change``) and until the next frame is painted (``paint``).
+   orbit data has changed (``change``) and until the next frame is painted (``paint``),
+   and along the way (``timeline``): the server's trace (``app.trace``: it receives the
+   event, submits the job, a worker starts and ends it, the result is applied and its
+   message sent) and the page's first message after that, all on the wall clock.
 
 Writes DIR/dashboard.md and DIR/dashboard.json; prints the table.
 """
@@ -114,7 +117,7 @@ def server_cost(n: int) -> dict:
         start = time.process_time()
         setattr(page.state, name, value)  # the result from the shared cache
         serialise = time.process_time()
-        message = protocol.create("PATCH-DOC", list(events))  # as app.patches.release
+        message = protocol.create("PATCH-DOC", list(events))  # as pn.io.hold sends them
         content = message.content_json
         cpu = (time.process_time() - start) * 1e3
         one = (time.process_time() - serialise) * 1e3
@@ -141,28 +144,73 @@ def server_cost(n: int) -> dict:
     return out
 
 
+#: The stages of one key press, in order: (name, where it is read). Server stages come
+#: from the server's trace (``app.trace``), browser ones from the page's clock.
+STAGES = ("server receives", "job submitted", "worker starts", "worker ends",
+          "result applied", "result sent", "browser receives", "data changed", "drawn")
+
+
+def timeline(key_s: float, change_ms: float, paint_ms: float, trace: list,
+             frames: list) -> dict:
+    """Milliseconds after the key press (wall clock ``key_s``) at which each stage of
+    ``STAGES`` happened first after the one before it (the interactive lane's job, the
+    support result); absent stages are left out."""
+    at = {"data changed": key_s + change_ms / 1e3, "drawn": key_s + paint_ms / 1e3}
+    wanted = {"worker starts": {"lane": "interactive"}, "worker ends": {"lane": "interactive"},
+              "job submitted": {"slot": "support"}, "result applied": {"slot": "support"},
+              "result sent": {"slot": "support"}}
+    found, after = {}, key_s
+    for stage in STAGES:
+        if stage in at:
+            t = at[stage]
+        elif stage == "browser receives":
+            t = next((f for f in frames if f >= after), None)
+        else:
+            t = next((e["t"] for e in trace if e["stage"] == stage and e["t"] >= after
+                      and all(e.get(k) == v for k, v in wanted.get(stage, {}).items())), None)
+        if t is None or t > at["drawn"]:
+            continue
+        found[stage] = (t - key_s) * 1e3
+        after = t
+    return found
+
+
 def browser_side(presses: int, out: Path) -> dict:
     from tests.browser.page_tools import measure_slider_latency, settle, slider_handle, wait_for_app
     from tests.browser.serving import launch_chromium, serve_app
     from playwright.sync_api import sync_playwright
 
-    with serve_app(out / "bench-panel-serve.log") as base, sync_playwright() as pw:
+    trace_path = out / "bench-trace.jsonl"
+    trace_path.unlink(missing_ok=True)
+    with serve_app(out / "bench-panel-serve.log",
+                   env={"MICROPILLAR_TRACE": str(trace_path.resolve())}) as base, \
+            sync_playwright() as pw:
         browser = launch_chromium(pw)
         page = browser.new_page(viewport={"width": 1280, "height": 720})
+        frames = []  # wall-clock seconds at which the page read a message's first frame
+        page.on("websocket", lambda ws: ws.on(
+            "framereceived", lambda payload: frames.append(time.time())
+            if isinstance(payload, str) and '"msgtype"' in payload else None))
         load_s = wait_for_app(page, f"{base}/app")
         settle(page)
         handle = slider_handle(page, css_class="ctl-theta0")
-        change, paint = [], []
+        change, paint, presses_at = [], [], []
         for i in range(presses):
             m = measure_slider_latency(page, handle, "ArrowRight" if i % 2 == 0 else "ArrowLeft",
                                        names=["orbit"])
+            presses_at.append(page.evaluate("() => (performance.timeOrigin + window.__mpLastKey) / 1e3"))
             change.append(m["change_ms"])
             paint.append(m["paint_ms"])
             settle(page, quiet_ms=300)
         browser.close()
+    trace = [json.loads(line) for line in trace_path.read_text().splitlines()] \
+        if trace_path.exists() else []
+    steps = [timeline(k, c, p, trace, frames) for k, c, p in zip(presses_at, change, paint)]
+    stages = {f"key press -> {stage}": percentiles([s[stage] for s in steps if stage in s])
+              for stage in STAGES if any(stage in s for s in steps)}
     return {"page load to rendered (s)": load_s,
             "key press -> orbit data changed": percentiles(change),
-            "key press -> redrawn": percentiles(paint)}
+            "key press -> redrawn": percentiles(paint), **stages}
 
 
 def report(server: dict, browser: dict, cost: dict | None = None) -> str:
@@ -176,7 +224,7 @@ def report(server: dict, browser: dict, cost: dict | None = None) -> str:
     if cost:
         lines += ["", f"Page: {cost['page size kB']:.0f} kB of document JSON."] + [
             f"{k}: {v['changes']} changes, {v['json_kB']:.1f} kB JSON + {v['binary_kB']:.1f} kB "
-            f"in {v['buffers']} binary buffers, sent as one message (``app.patches``)."
+            f"in {v['buffers']} binary buffers, sent as one message (``pn.io.hold``)."
             for k, v in cost.items() if isinstance(v, dict) and "json_kB" in v]
     if browser:
         lines += ["", f"page load to a rendered document: {browser['page load to rendered (s)']:.2f} s "

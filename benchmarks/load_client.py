@@ -158,12 +158,6 @@ class Session:
                         ("theta0", "k_r", "k_theta", "F_N")}
         self.orbit = next(m for m in self.doc.models if getattr(m, "name", None) == "orbit")
         self.readout = self._find("readout-fixed")
-        # The page's behaviour component says it has been drawn, as in the browser: the
-        # server holds the page's updates until then (app.opening).
-        behaviour = next(m for m in self.doc.models
-                         if getattr(m, "class_name", None) == "PageBehaviour").data
-        behaviour.shown = behaviour.shown + 1
-        await self._flush()
         self.open_s = time.perf_counter() - start
         self._reader = asyncio.create_task(self._read_loop())
 

@@ -115,3 +115,43 @@ def test_results_own_every_computation():
     for path in _python_files("app/views"):
         source = path.read_text()
         assert "work_pool" not in source and ".submit(" not in source, path.name
+
+
+#: The serving layer: how pages reach browsers (the light page, the page gate, the server's
+#: hooks and its guards on Panel's internals). The session layer -- state, results, their
+#: slots, the views -- imports none of it and knows nothing of sockets or messages.
+SERVING = ("edge", "opening", "pages", "app_hooks", "main", "healthcheck")
+SESSION = ("app/state.py", "app/results.py", "app/slot.py", "app/compare.py", "app/views")
+#: Words of the wire: a session-layer module that uses one reaches below Panel's API.
+WIRE = ("PATCH-DOC", "send_message", "_socket", "session_context._session",
+        "_subscribed_connections", "_pending_writes", "_held_events", "write_message")
+
+
+@pytest.mark.parametrize("path", [p for f in SESSION for p in (
+    [ROOT / f] if f.endswith(".py") else _python_files(f))], ids=lambda p: str(p.relative_to(ROOT)))
+def test_the_session_layer_knows_nothing_of_serving(path):
+    imported = _imports(path)
+    serving = {name for name in imported
+               if name.lstrip(".").split(".")[-1] in SERVING
+               or any(name == f"app.{m}" for m in SERVING)}
+    assert not serving, f"{path.relative_to(ROOT)} imports the serving layer: {serving}"
+    source = path.read_text()
+    assert not [w for w in WIRE if w in source], path.relative_to(ROOT)
+
+
+def test_private_internals_are_touched_in_the_edge_module_only():
+    """Panel, Bokeh, Tornado, param and concurrent.futures internals named by the app:
+    only ``app/edge.py`` may, behind its version check (tests/test_edge.py)."""
+    import re
+
+    private = re.compile(r"_subscribed_connections|_pending_writes|_held_events|"
+                         r"_change_callbacks|_set_session|send_message *=|DocHandler|"
+                         r"parse_query *=|RequestHandler\.|_remove_control_chars|\._broken|"
+                         r"\._processes|\._watch\(|default_view\.prototype|\._socket\b|"
+                         r"\._session\b|Bokeh\.index|shadow_el|callbacks\._hold\b")
+    # app/reproduce draws the paper's figures offline in a headless page (no server):
+    # BokehJS's view index exports them as SVG there.
+    found = [f"{p.relative_to(ROOT)}:{n}" for p in _python_files("app")
+             if p.name != "edge.py" and p.parent.name != "reproduce"
+             for n, line in enumerate(p.read_text().splitlines(), 1) if private.search(line)]
+    assert found == []

@@ -140,7 +140,9 @@ SELECT_CSS = "select { min-height: var(--mp-button, 31px) !important; }"
 
 #: Longest interval between updates of the slider and readout while playing [ms].
 UI_MS = 120
-#: Milliseconds after a served page is up before the player says it is ready (``ready_soon``).
+#: Milliseconds after a served page is up before the player says it is ready (``ready``): the
+#: change must reach the browser after the player's models, which a page sends a turn or
+#: two later (a page built once opened, a result's new figures).
 READY_DELAY_MS = 300
 
 
@@ -193,12 +195,6 @@ class BrowserPlayer:
     def ready(self) -> None:
         """The same from the server (inside Panel): a property change the browser sees."""
         self.play.tags = [*self.play.tags, "ready"]
-
-    def ready_soon(self, doc) -> None:
-        """``ready()`` ``READY_DELAY_MS`` after now, from a served page that is up: the
-        change must reach the browser after the player's models, which a page sends a
-        turn or two later (a page built once opened, a result's new figures)."""
-        doc.add_timeout_callback(self.ready, READY_DELAY_MS)
 
 
 def browser_player(n_frames: int, times=None, fps: float = 30.0, autoplay: bool = False,
@@ -262,8 +258,15 @@ def browser_player(n_frames: int, times=None, fps: float = 30.0, autoplay: bool 
     # The slider dragged: jump there (the timer, when playing, goes on from there).
     slider.js_on_change("value", CustomJS(args=args, code=_PRELUDE + """
         if (slider.value !== frame.value) st.set(slider.value);"""))
-    ready_js = CustomJS(args=dict(**args, autoplay=bool(autoplay)),
-                        code=_PRELUDE + "if (autoplay && !play.active) play.active = true;")
+    # Autoplay. In a page sent in a patch, BokehJS draws the views over several turns, and
+    # the play button's view throws on a change before it is drawn: then try again soon.
+    ready_js = CustomJS(args=dict(**args, autoplay=bool(autoplay)), code=_PRELUDE + """
+        const go = () => {
+          if (!autoplay || play.active) return;
+          try { play.active = true; }
+          catch (error) { play.setv({active: false}, {silent: true}); st.stop(); setTimeout(go, 100); }
+        };
+        go();""")
     play.js_on_change("tags", ready_js)
     wrap = {"styles": {"flex-wrap": "wrap"}, "sizing_mode": "stretch_width"} if responsive else {}
     if responsive:  # one row that wraps: buttons, then the slider taking what is left

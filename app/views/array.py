@@ -17,9 +17,9 @@ from bokeh.models import Plot
 
 from .. import figures as F
 from ..figures.array_scene import array_scene
-from ..figures.player import browser_player
-from ..results import SessionResults
+from ..figures.player import READY_DELAY_MS, browser_player
 from ..export import array_csv
+from ..results import SessionResults
 from ..state import ExplorerState
 from ..texts import FELT_WORDS
 from .export import AnimationExport, ResultDownload, svg_button
@@ -34,8 +34,8 @@ def result_text(motion, orientation: str) -> str:
     duration-weighted average, the dashed line the live mean settles to), then the grid."""
     m = motion.model
     return (f"**Result: F_T,x/(μ₀F_N) = {m['FTx_over_mu0FN_duration']:.3f}**, the force "
-            f"on the sliding slab once it has settled ({FELT_WORDS}), with N_c/N_c0 = {m['Nc_over_Nc0']:.3g} supports "
-            f"in contact per rigid one. Below: {motion.n_supports} supports on a "
+            f"on the sliding slab once it has settled ({FELT_WORDS}), with N_c/N_c0 = "
+            f"{m['Nc_over_Nc0']:.3g} supports in contact per rigid one. Below: {motion.n_supports} supports on a "
             f"{motion.n_rows} × {motion.n_cols} grid, θ₀ "
             f"{'uniform' if orientation == 'uniform' else 'fixed'}; the live values move "
             f"as supports enter and leave, their mean settles on the dashed lines."
@@ -83,8 +83,9 @@ class ArrayView(pn.viewable.Viewer):
         if self._doc is not None:
             # Keys and autoplay start with a change the page sees: once the page has loaded
             # (a result that came before), or once the new models are in a loaded page.
-            player, doc = self.player, self._doc
-            pn.state.onload(lambda: player.ready_soon(doc))
+            player = self.player
+            pn.state.onload(lambda: pn.state.add_periodic_callback(
+                player.ready, period=READY_DELAY_MS, count=1))
         self._restyle()
         self.status.object = result_text(motion, self.state.orientation)
 

@@ -18,8 +18,6 @@ screen width.
   changed after Bokeh creates it.
 * **Narrow screens.** ``narrow`` is True when the page is first shown on a screen
   narrower than ``NARROW_PX`` (a phone): the page folds its controls away there.
-* **Shown.** ``shown`` counts the times the browser has drawn the component, the page's
-  last element: the server keeps the page's updates back until then (``app.opening``).
 """
 from __future__ import annotations
 
@@ -41,20 +39,22 @@ class PageBehaviour(JSComponent):
     acked = param.Integer(default=0, doc="the Back/Forward steps the server has restored: "
                           "an address written before the latest step is stale and dropped")
     narrow = param.Boolean(default=False, doc="first shown on a screen < NARROW_PX wide")
-    shown = param.Integer(default=0, doc="how many times the browser has drawn the page")
     page_fraction = param.Number(default=0.1, bounds=(0.01, 1.0),
                                  doc="PageUp/PageDown move a slider by this part of its range")
 
     _esm = """
     function sliderOf(path) {
-      const handle = path.find((el) => el.classList && el.classList.contains("noUi-handle"));
-      if (!handle || !window.Bokeh) return null;
+      // The slider's own element (the first shadow host on the path from the handle) and
+      // the Bokeh slider model carrying its CSS classes (``ctl-k_r``, ...).
+      if (!window.Bokeh || !path.some((el) => el.classList && el.classList.contains("noUi-handle")))
+        return null;
+      const host = path.find((el) => el.shadowRoot);
+      if (!host) return null;
       for (const doc of Bokeh.documents) {
         for (const m of doc.all_models) {
           if (!/Slider$/.test(m.type) || typeof m.value !== "number") continue;
-          const view = Bokeh.index.find_one(m);
-          const root = view && (view.shadow_el || view.el);
-          if (root && root.contains(handle)) return m;
+          const classes = m.css_classes || [];
+          if (classes.length && classes.every((c) => host.classList.contains(c))) return m;
         }
       }
       return null;
@@ -102,7 +102,5 @@ class PageBehaviour(JSComponent):
       });
       model.narrow = window.innerWidth < NARROW;
       write(model.search, true);  // the address as the page reads it, with no new entry
-      // Said after the frame that draws it (the page's last element).
-      requestAnimationFrame(() => setTimeout(() => { model.shown = model.shown + 1; }, 0));
     }
     """.replace("NARROW", str(NARROW_PX))

@@ -19,7 +19,6 @@ import param
 
 from ..export import sweep_csv, trajectory_csv
 from ..jobs import solver_ready
-from ..patches import hold_until_next_tick
 from ..results import SessionResults
 from ..state import URL_KEYS, ExplorerState
 from ..texts import HELP
@@ -157,10 +156,6 @@ class Dashboard(pn.viewable.Viewer):
             + " of the paper (Sci. Rep. 11, 8093, 2021)",
             **look("primary", "outline"), css_classes=["tab-bar"],
             margin=(6, 10, 0, 10), stylesheets=[BUTTON_CSS])
-        # First reaction to any change of the controls (param runs lower precedence
-        # first; public watchers may not go below 0, whence ``_watch``): hold the page's
-        # changes so they reach the browser as one message (``app.patches``).
-        state.param._watch(self._hold_changes, list(state.param), precedence=-2)
         state.param.watch(self._on_state_tab, "tab")
         results.param.watch(self._collect, "errors")
         state.param.watch(self._collect, "notice")
@@ -254,14 +249,6 @@ class Dashboard(pn.viewable.Viewer):
         self.behaviour.replace_search = canonical
         self.behaviour.search = canonical
 
-    def when_shown(self, callback) -> None:
-        """Call ``callback()`` once the browser has drawn the page (``PageBehaviour.shown``,
-        the page's last element)."""
-        def shown(_event):
-            self.behaviour.param.unwatch(watcher)
-            callback()
-        watcher = self.behaviour.param.watch(shown, "shown")
-
     def _on_narrow(self, event) -> None:
         """A phone: the controls start folded above the plots."""
         if hasattr(self, "sidebar"):
@@ -299,9 +286,6 @@ class Dashboard(pn.viewable.Viewer):
             return io.StringIO("# The polar sweep for these settings is being computed "
                                "(the Polar tab shows it): download again in a moment.\n")
         return io.StringIO(sweep_csv(r.polar, pinned=r.polar_A, comparing=r.comparing))
-
-    def _hold_changes(self, *_events) -> None:
-        hold_until_next_tick(pn.state.curdoc)
 
     def _name_downloads(self, *_events) -> None:
         s = self.state

@@ -29,7 +29,7 @@ from ..figures.live_energy import (energy_frames, energy_live_data, energy_live_
                                    live_energy_figure, support_frames_callback,
                                    support_frames_data)
 from ..figures.pinned import add_pinned, forces_A, orbit_A, show_pinned
-from ..figures.player import browser_player
+from ..figures.player import READY_DELAY_MS, browser_player
 from ..figures.scene import view_box
 from ..results import SessionResults
 from ..state import ExplorerState
@@ -97,7 +97,8 @@ class SupportView(pn.viewable.Viewer):
             # Keyboard shortcuts (and autoplay) start with a change the page sees: made
             # once the page is up, after the models it changes were sent (app.opening).
             player, doc = self.player, self._doc
-            pn.state.onload(lambda: player.ready_soon(doc))
+            pn.state.onload(lambda: pn.state.add_periodic_callback(
+                player.ready, period=READY_DELAY_MS, count=1))
         self._draw()
 
     # ------------------------------------------------------------------ results

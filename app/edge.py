@@ -1,0 +1,181 @@
+"""The serving edge: what the lab's server needs that Panel, Bokeh and Tornado do not offer
+through a public hook, in one place, each installed only on the tested stack (``TESTED``).
+
+On another version of Panel, Bokeh or Tornado the server says so in one line at start-up
+(``install``) and runs on public behaviour alone: the page still works, without the
+guards below. ``tests/test_edge.py`` fails the day one of the internals they use changes.
+Each guard has a reproducer with plain Panel in ``docs/upstream/``.
+
+The touches, and what each buys:
+
+1. **Response headers** (``SECURITY_HEADERS``; ``add_security_headers``): Tornado's hook
+   for default headers (``RequestHandler.set_default_headers``), meant for subclasses, set
+   on the base class so Bokeh's and Panel's handlers get it too: no other site may frame
+   the dashboard, browsers take each file as the type the server declares. There it also
+   drops a ``bokeh-session-id`` Bokeh would read as empty (Bokeh answers 500,
+   ``docs/upstream/empty_session_id.py``).
+2. **The busy page before any session** (``answer_busy_before_building``): a client whose
+   unopened pages fill its place in the page gate (``app.pages``) gets ``BUSY_HTML``
+   (~1 ms) instead of a Bokeh session and a Panel page (~25 ms of the event loop each), so
+   a burst of page requests leaves the liveness endpoint fast. Panel's page handler has
+   no hook before its session is made; its ``get`` is wrapped.
+3. **Panel's reader of the page address** (``guard_query_parsing``): Panel parses the
+   address of every session (``Location.query_params``) and raises on a value such as
+   4301 digits, and the page stops syncing (``docs/upstream/parse_query_digits.py``).
+4. **Panel's text views drawn late** (``MARKUP_GUARD_JS``, in the page): a change of
+   ``visible`` reaching a markup view built but not yet drawn throws in Panel's view
+   (``docs/upstream/markup_visible_before_drawn.py``).
+"""
+from __future__ import annotations
+
+import logging
+import re
+
+log = logging.getLogger(__name__)
+
+#: The versions the guards were written and tested against (``tests/test_edge.py``).
+TESTED = {"panel": "1.9.4", "bokeh": "3.9.2", "tornado": "6.6.1"}
+
+#: Headers added to every HTTP response of the server (pages, scripts, websocket upgrades,
+#: the liveness endpoint, errors).
+SECURITY_HEADERS = {
+    "X-Frame-Options": "SAMEORIGIN",
+    "Content-Security-Policy": "frame-ancestors 'self'",
+    "X-Content-Type-Options": "nosniff",
+    "Referrer-Policy": "same-origin",
+}
+
+#: Control characters Tornado's ``get_argument`` turns into spaces (as Tornado 6.6 does).
+CONTROL_CHARS = re.compile(r"[\x00-\x08\x0e-\x1f]")
+
+
+def versions() -> dict:
+    import bokeh
+    import panel
+    import tornado
+
+    return {"panel": panel.__version__, "bokeh": bokeh.__version__, "tornado": tornado.version}
+
+
+def on_tested_stack() -> bool:
+    return versions() == TESTED
+
+
+def untested_note() -> str | None:
+    """The one line the server logs at start-up on an untested stack, else None."""
+    found = versions()
+    if found == TESTED:
+        return None
+    return (f"panel/bokeh/tornado {found['panel']}/{found['bokeh']}/{found['tornado']} are not "
+            f"the tested {TESTED['panel']}/{TESTED['bokeh']}/{TESTED['tornado']}: the server "
+            "runs without its guards (security headers, busy page, address guard, text-view "
+            "guard); see app/edge.py")
+
+
+def install() -> bool:
+    """Install the server guards 1-3 (once per process) on the tested stack; elsewhere
+    log ``untested_note()`` once. Returns whether they are installed."""
+    note = untested_note()
+    if note is not None:
+        log.warning(note)
+        return False
+    guard_query_parsing()
+    add_security_headers()
+    answer_busy_before_building()
+    return True
+
+
+# ---------------------------------------------------------------------- 1. headers
+def add_security_headers() -> None:
+    from tornado.web import RequestHandler
+
+    if getattr(RequestHandler.set_default_headers, "_security_headers", False):
+        return
+    default = RequestHandler.set_default_headers
+
+    def set_default_headers(self):
+        default(self)
+        for name, value in SECURITY_HEADERS.items():
+            self.set_header(name, value)
+        drop_empty_session_id(getattr(self, "request", None))
+
+    set_default_headers._security_headers = True
+    RequestHandler.set_default_headers = set_default_headers
+
+
+def drop_empty_session_id(request) -> None:
+    """Without a ``bokeh-session-id`` Bokeh reads as empty (control characters made
+    spaces, then stripped: ``?bokeh-session-id=%00`` is empty too), the page gets a new
+    session, as for any address without one."""
+    for args in (getattr(request, "query_arguments", None), getattr(request, "arguments", None)):
+        values = args.get("bokeh-session-id") if args is not None else None
+        if not values:
+            continue
+        last = values[-1]
+        if isinstance(last, bytes):
+            last = last.decode("utf-8", errors="replace")
+        if not CONTROL_CHARS.sub(" ", last).strip():
+            del args["bokeh-session-id"]
+
+
+# ---------------------------------------------------------------------- 2. busy page
+def answer_busy_before_building() -> None:
+    from panel.io.server import DocHandler
+
+    from app.opening import BUSY_HTML
+    from app.pages import page_gate
+
+    if getattr(DocHandler.get, "_busy_first", False):
+        return
+    build = DocHandler.get
+
+    async def get(self, *args, **kwargs):
+        if not page_gate().has_room(self.request.remote_ip):
+            self.set_header("Cache-Control", "no-store")
+            self.set_header("Content-Type", "text/html; charset=UTF-8")
+            self.write(BUSY_HTML)
+            return None
+        return await build(self, *args, **kwargs)
+
+    get._busy_first = True
+    DocHandler.get = get
+
+
+# ---------------------------------------------------------------------- 3. address
+def guard_query_parsing() -> None:
+    from panel.io import location
+
+    from app.urlstate import panel_query
+
+    if not hasattr(location.parse_query, "__wrapped__"):
+        location.parse_query = panel_query(location.parse_query)
+
+
+# ---------------------------------------------------------------------- 4. text views
+#: Panel's text views (``PanelMarkupView``: HTML, Markdown, alerts) make their
+#: ``container`` when first drawn, and their handler of ``visible`` uses it at once: a page
+#: sent in a patch has views BokehJS builds at once but draws over later turns, so a change
+#: of ``visible`` in between threw "Cannot read properties of undefined (reading 'style')"
+#: and stopped the rest of that message. Until a view is drawn its ``container`` is a
+#: detached stand-in (the drawing reads the model's state anew). It relies on Panel's
+#: bundle defining ``container`` as a plain property (no class field).
+MARKUP_GUARD_JS = """
+const html = Bokeh.Models.get("panel.models.markup.HTML");
+const base = html == null ? null : Object.getPrototypeOf(html.prototype.default_view.prototype);
+if (base != null && Object.getOwnPropertyDescriptor(base, "container") == null) {
+  Object.defineProperty(base, "container", {
+    configurable: true,
+    get() { return this._drawn_container ?? document.createElement("div"); },
+    set(value) { this._drawn_container = value; },
+  });
+}
+"""
+
+
+def guard_markup_views(doc) -> None:
+    """Install ``MARKUP_GUARD_JS`` in ``doc``'s page when it is ready (tested stack only)."""
+    if doc is None or not on_tested_stack():
+        return
+    from bokeh.models import CustomJS
+
+    doc.js_on_event("document_ready", CustomJS(code=MARKUP_GUARD_JS))

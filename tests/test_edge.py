@@ -1,0 +1,116 @@
+"""``app.edge``: the server's guards run only on the tested stack, and each of these canary
+tests fails the day an internal a guard relies on changes (then: re-check the reproducer
+in ``docs/upstream/``, and delete the guard if the bug is fixed upstream). What the guards
+do for a visitor is checked on a served page (tests/test_url_served.py,
+tests/browser/test_hostile_url.py)."""
+from __future__ import annotations
+
+import inspect
+import logging
+from pathlib import Path
+
+import pytest
+
+from app import edge
+
+
+def test_the_installed_stack_is_the_tested_one():
+    """A new Panel, Bokeh or Tornado: run the canaries below and the browser tests on it,
+    then move ``TESTED``."""
+    assert edge.versions() == edge.TESTED
+    assert edge.untested_note() is None
+
+
+def test_on_another_stack_the_server_says_so_in_one_line_and_installs_nothing(
+        monkeypatch, caplog):
+    from tornado.web import RequestHandler
+
+    monkeypatch.setattr(edge, "versions", lambda: dict(edge.TESTED, panel="9.9.9"))
+    installed = []
+    for name in ("guard_query_parsing", "add_security_headers", "answer_busy_before_building"):
+        monkeypatch.setattr(edge, name, lambda name=name: installed.append(name))
+    with caplog.at_level(logging.WARNING, logger="app.edge"):
+        assert edge.install() is False
+    assert installed == []
+    [record] = caplog.records
+    assert "9.9.9" in record.message and "1.9.4" in record.message
+    assert "\n" not in record.message
+    assert not edge.on_tested_stack()
+    assert RequestHandler is not None
+
+
+def test_canary_default_headers_are_set_for_every_response():
+    """Guard 1 relies on Tornado calling ``set_default_headers`` from ``clear`` (on each
+    handler's creation and before an error page), and on the page and websocket handlers
+    not overriding it."""
+    from panel.io.server import DocHandler, WSHandler
+    from tornado.web import RequestHandler
+
+    assert "self.set_default_headers()" in inspect.getsource(RequestHandler.clear)
+    assert "self.clear()" in inspect.getsource(RequestHandler.__init__)
+    assert "self.clear()" in inspect.getsource(RequestHandler.send_error)
+    for handler in (DocHandler, WSHandler):
+        overrides = [c for c in handler.__mro__
+                     if "set_default_headers" in vars(c) and c is not RequestHandler]
+        assert overrides == [] or all(
+            getattr(vars(c)["set_default_headers"], "_security_headers", False)
+            for c in overrides), overrides
+
+
+def test_canary_tornado_reads_control_characters_as_the_guard_does():
+    """Guard 1 drops a ``bokeh-session-id`` that Tornado's ``get_argument`` makes empty."""
+    from tornado.web import RequestHandler
+
+    assert RequestHandler._remove_control_chars_regex.pattern == edge.CONTROL_CHARS.pattern
+
+
+def test_canary_panel_serves_its_pages_with_the_wrapped_handler():
+    """Guard 2 wraps the ``get`` of the handler Panel serves an app's page with."""
+    from panel.io.server import DocHandler, per_app_patterns
+
+    assert (r"/?", DocHandler) in [tuple(p[:2]) for p in per_app_patterns]
+    assert inspect.iscoroutinefunction(inspect.unwrap(DocHandler.get))
+
+
+def test_canary_panel_still_reads_every_address_with_a_parser_that_raises():
+    """Guard 3: Panel parses each session's address with ``parse_query`` (its ``Location``
+    watches ``search``), which raises on 4301 digits (docs/upstream/parse_query_digits.py).
+    Fixed upstream: this fails, and the guard can go."""
+    from panel.io import location
+    from panel.util import parse_query
+
+    source = inspect.getsource(location.Location)
+    assert "parse_query(self.search)" in source
+    assert "self.param.watch(self._update_synced, ['search'])" in source
+    with pytest.raises(ValueError):
+        parse_query("?x=" + "1" * 4301)
+
+
+def test_canary_panels_text_views_make_their_container_when_drawn():
+    """Guard 4 defines ``container`` on the prototype of Panel's markup view; it works
+    while Panel's bundle assigns it in ``render`` and declares no class field (which
+    would shadow the prototype's property)."""
+    import panel
+    from panel.models.markup import HTML
+
+    assert HTML.__qualified_model__ == "panel.models.markup.HTML"
+    bundle = (Path(panel.__file__).parent / "dist" / "panel.js").read_text(encoding="utf-8")
+    start = bundle.index("class PanelMarkupView extends")
+    constructor = bundle[start:bundle.index("}", start)]
+    assert "container" not in constructor
+    view = bundle[start:bundle.index("\n    }\n", start)]
+    assert "this.container = (0, dom_1.div)();" in view
+
+
+def test_the_text_view_guard_is_in_the_page_on_the_tested_stack(monkeypatch):
+    from bokeh.document import Document
+    from bokeh.models import CustomJS
+
+    doc = Document()
+    edge.guard_markup_views(doc)
+    callbacks = doc.callbacks.js_event_callbacks.get("document_ready", [])
+    assert [c.code for c in callbacks if isinstance(c, CustomJS)] == [edge.MARKUP_GUARD_JS]
+    monkeypatch.setattr(edge, "versions", lambda: dict(edge.TESTED, bokeh="9.9.9"))
+    other = Document()
+    edge.guard_markup_views(other)
+    assert not other.callbacks.js_event_callbacks.get("document_ready")

@@ -1,0 +1,92 @@
+"""What a visitor's browser receives from the served dashboard (``slow``; loopback only):
+the page arrives once opened, and each step of an update -- the answer to a slider move, a
+result -- arrives as one message, in order (a message naming a model the page does not
+have yet would stop the page). Seen from a protocol-level browser stand-in
+(``benchmarks/load_client.py``), which applies every message to its copy of the page as
+BokehJS does, and fails on a model it does not know."""
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+pytestmark = [pytest.mark.slow, pytest.mark.timeout(600)]
+
+
+@pytest.fixture(scope="module")
+def served(tmp_path_factory):
+    """``panel serve app`` on a free loopback port: (base URL, log path)."""
+    from browser.serving import ServerError, serve_app
+
+    log = tmp_path_factory.mktemp("serving") / "panel-serve.log"
+    path = os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH")) if p)
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv("PYTHONPATH", path)
+        try:
+            with serve_app(log, timeout_s=90.0) as base:
+                yield base, log
+        except ServerError as error:
+            pytest.fail(str(error), pytrace=False)
+
+
+#: Run in ``benchmarks/`` (the client is a benchmark's module): open a page, wait for its
+#: first plot and a quiet moment, move θ₀ and wait until the readout shows it and two
+#: quiet seconds more; print the messages received after the move as
+#: [[seconds after, [[kind, attribute], ...]], ...] and the client's errors, as JSON.
+_MOVE = """
+import asyncio, json, sys, time
+import load_client as lc
+
+async def main(base, degrees):
+    session = lc.Session(0, base)
+    await session.open()
+    await session.first_plot()
+    await asyncio.sleep(2.0)
+    before, sent = session.patches, time.perf_counter()
+    await session._set("theta0", degrees)
+    deadline = sent + 60
+    while not session._readout_shows(degrees) and time.perf_counter() < deadline \\
+            and not session.errors:
+        await asyncio.sleep(0.05)
+    await asyncio.sleep(2.0)
+    count = session.patches - before
+    received = [(t - sent, events) for t, events in list(session.recent)[-count:]] \\
+        if count else []
+    errors = list(session.errors)
+    if not session._readout_shows(degrees):
+        errors.append(f"the readout never showed theta0 = {degrees:g}")
+    session.socket.close()
+    print(json.dumps([received, errors]))
+
+asyncio.run(main(sys.argv[1], float(sys.argv[2])))
+"""
+
+
+def _moved(base: str, degrees: float = 33.0) -> tuple[list, list]:
+    done = subprocess.run([sys.executable, "-c", _MOVE, base, str(degrees)],
+                          cwd=ROOT / "benchmarks", capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-3000:]
+    received, errors = json.loads(done.stdout.strip().splitlines()[-1])
+    return received, errors
+
+
+def test_a_slider_move_reaches_the_page_in_a_few_whole_messages(served):
+    base, log = served
+    received, errors = _moved(base)
+    assert errors == [], errors
+    # The orbit's new data comes in one message with the rest of its result (the other
+    # figures' sources, ranges, the readouts), not as one message per property ...
+    orbit = [events for _, events in received
+             if sum(kind == "ColumnDataChanged" for kind, _ in events) >= 5]
+    assert len(orbit) == 1, received
+    assert len(orbit[0]) >= 20, orbit
+    # ... and the whole update is a handful of messages: the answer to the move, the
+    # result, the address bar (written a moment later), the readouts' own result.
+    assert len(received) <= 6, received
+    text = log.read_text(encoding="utf-8", errors="replace")
+    assert "Traceback" not in text and "UnknownReferenceError" not in text
