@@ -25,7 +25,8 @@ def test_headline_names_both_arrays_and_what_is_missing():
     assert text == ("Friction is 5.4 % below a rigid surface (every support at θ₀ = 90°); "
                     "with supports of all orientations the slab feels 5.5 % below a rigid "
                     "surface (each support counted for as long as it touches the slab).")
-    assert headline_text(0.9, 45.0, None).endswith("the slab feels being computed.")
+    assert headline_text(0.9, 45.0, None).endswith(
+        "what the slab feels with supports of all orientations: being computed.")
     assert headline_text(0.9, 45.0, None, "not computed (see the notice)").endswith(
         "not computed (see the notice).")
     assert headline_text(None, 45.0, None).startswith("Friction: being computed;")

@@ -25,12 +25,13 @@ from model.controls import CONTROLS
 from model.shipped_map import SHIPPED_LOADS, load_regime_map
 
 from .. import figures as F
-from ..figures.arrays import MAP_QUANTITIES, map_data, value_range
+from ..figures.arrays import MAP_QUANTITIES, map_data, map_title, value_range
 from ..figures.common import legend_above
 from ..figures.live_energy import (energy_frames, live_energy_figure, support_frames_callback)
 from ..figures.player import SPEEDS, browser_player
 from ..figures.polar import QUANTITIES as POLAR_QUANTITIES
 from ..figures.scene import ARROW_SCALE, MAX_ASPECT, STRETCH_WARNING, STRIPES
+from ..texts import FELT_WORDS
 from ..worker import POLAR_THETA0
 
 __all__ = ["support_figures", "polar_figures", "map_figure", "projector_styles", "maps",
@@ -95,13 +96,15 @@ def maps(digits: int = 6) -> dict:
     average, the figure's "FTx"; Fig. 5b: D_y/D_x, "DyDx")."""
     geometry, loads = None, {}
     for F_N in SHIPPED_LOADS:
-        cols = map_data(load_regime_map(F_N=F_N), "5a")["regime_map"]
+        shipped = load_regime_map(F_N=F_N)
+        cols = map_data(shipped, "5a")["regime_map"]
         cells = {k: [_round(v, 12) for v in np.asarray(cols[k], float)] for k in MAP_GEOMETRY}
         if geometry is None:
             geometry = cells
         elif cells != geometry:
             raise ValueError(f"the shipped map at F_N = {F_N:g} is on another grid")
         loads[f"{F_N:g}"] = {
+            "titles": {q: map_title(q, shipped, "paper") for q in MAP_QUANTITIES},
             "columns": {k: [_round(v, digits) for v in np.asarray(cols[k], float)]
                         for k in MAP_COLUMNS},
             "range": {q: value_range(cols[MAP_VALUE[q]]) for q in MAP_QUANTITIES}}
@@ -132,8 +135,7 @@ def constants() -> dict:
                 stretch_warning=STRETCH_WARNING, speeds=list(SPEEDS),
                 polar_theta0=[float(t) for t in POLAR_THETA0],
                 polar=dict((k, [v[0], v[1], v[2]]) for k, v in POLAR_QUANTITIES.items()),
-                map_titles={q: t for q, (_, t) in MAP_QUANTITIES.items()},
-                shipped_loads=list(SHIPPED_LOADS))
+                shipped_loads=list(SHIPPED_LOADS), felt_words=FELT_WORDS)
 
 
 def _snapshot(figs) -> dict:

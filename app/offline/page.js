@@ -285,7 +285,8 @@
 
   function writeHeadline(r) {
     var ratio = r.F_mean_x / CONFIG.mu0;
-    var text = VIEWS.headlineText(ratio, Number(state.theta0_deg.toFixed(6)), null, CONFIG.uniform_note);
+    var text = VIEWS.headlineText(ratio, Number(state.theta0_deg.toFixed(6)), null, CONFIG.uniform_note,
+                                   CONFIG.felt_words);
     model("headline").text = (r.success ? "" : "<span style='color:#b00020'>" + esc(r.message) +
                               "</span><br>") + esc(text);
     model("headline-number").text = "F<sub>T,x</sub>/(μ<sub>0</sub>F<sub>N</sub>) = <b>" +
@@ -359,8 +360,7 @@
     source("regime_map").data = data;
     var lohi = m.range[mapQuantity];
     model("regime_map_colors").setv({low: lohi[0], high: lohi[1]});
-    figure("regime_map").title.text = CONFIG.map_titles[mapQuantity].replace(
-      /F_N = [0-9.]+/, "F_N = " + loadLabel(load));
+    figure("regime_map").title.text = m.titles[mapQuantity];  // app.figures.arrays.map_title
     model("map-note").text = "Uniform arrays (θ₀ uniform), self-consistent β, shipped with the " +
       "model at F_N = " + CONFIG.shipped_loads.map(loadLabel).join(", ") + ". Shown: F_N = " +
       loadLabel(load) + (Math.abs(load - state.F_N) > 1e-12 * load

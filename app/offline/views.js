@@ -258,14 +258,16 @@
     return Math.abs(percent).toFixed(1) + " % " + (percent > 0 ? "below" : "above") + " a rigid surface";
   }
 
-  /** The page's one-line result (readouts.headline_text). */
-  function headlineText(fixed, theta0Deg, uniform, uniformNote) {
+  /** The page's one-line result (readouts.headline_text); feltWords: app.texts.FELT_WORDS. */
+  function headlineText(fixed, theta0Deg, uniform, uniformNote, feltWords) {
     var first = fixed !== null && fixed !== undefined
       ? "Friction is " + changeWords(fixed) + " (every support at θ₀ = " + fmtG(theta0Deg) + "°)"
       : "Friction: being computed";
-    var second = uniform !== null && uniform !== undefined ? changeWords(uniform)
-      : (uniformNote || "being computed");
-    return first + "; averaged over all orientations: " + second + ".";
+    if (uniform === null || uniform === undefined)
+      return first + "; what the slab feels with supports of all orientations: " +
+        (uniformNote || "being computed") + ".";
+    return first + "; with supports of all orientations the slab feels " + changeWords(uniform) +
+      " (" + feltWords + ").";
   }
 
   return {

@@ -39,9 +39,11 @@ def headline_text(fixed: float | None, theta0_deg: float, felt: float | None,
     value not (yet) there."""
     first = (f"Friction is {change_words(fixed)} (every support at θ₀ = {theta0_deg:g}°)"
              if fixed is not None else "Friction: being computed")
-    second = (f"{change_words(felt)} ({FELT_WORDS})" if felt is not None
-              else (felt_note or "being computed"))
-    return f"{first}; with supports of all orientations the slab feels {second}."
+    if felt is None:
+        return (f"{first}; what the slab feels with supports of all orientations: "
+                f"{felt_note or 'being computed'}.")
+    return (f"{first}; with supports of all orientations the slab feels "
+            f"{change_words(felt)} ({FELT_WORDS}).")
 
 
 def _short_words(ratio: float | None) -> str:
