@@ -44,7 +44,7 @@ def test_forces_fig7(series):
     assert np.array_equal(data["F_abs"], s.F_abs)
     assert F.annotation(fig, "forces_mu0").location == pytest.approx(mu0())
     assert {item.label["value"] for item in fig.legend[0].items} == {
-        "|F_f|/f_N", "F_f,x/f_N", "F_f,y/f_N"}
+        "|F_f|", "F_f,x", "F_f,y"}
 
 
 @pytest.mark.parametrize("key, parity", [("FTx", 1), ("FTy", -1)])
