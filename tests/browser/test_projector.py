@@ -127,7 +127,9 @@ def test_projector_mode_helps_every_tab(screen, app_url, tab):
         _, _, w0, h0 = normal[tab][main]["frame"]
         print(f"{tab} {size['width']}x{size['height']}: {main} drawn {w:.0f}x{h:.0f} px "
               f"projected, {w0:.0f}x{h0:.0f} px normal")
-        assert w * h >= 0.97 * w0 * h0 and min(w, h) >= 0.9 * min(w0, h0), \
+        # The area at least as large; its shorter side may give a little to the larger
+        # headline above it, never much (a sliver is no larger figure).
+        assert w * h >= 0.97 * w0 * h0 and min(w, h) >= 0.85 * min(w0, h0), \
             f"{tab}: {main} is drawn smaller projected ({w:.0f}x{h:.0f}) than normal ({w0:.0f}x{h0:.0f})"
         top = figures[main]["page"][1]
         assert top < size["height"] * 0.5, f"{tab}: {main} starts at {top:.0f} px"
