@@ -44,7 +44,7 @@ def test_forces_fig7(series):
     assert np.array_equal(data["F_abs"], s.F_abs)
     assert F.annotation(fig, "forces_mu0").location == pytest.approx(mu0())
     assert {item.label["value"] for item in fig.legend[0].items} == {
-        "|F_f|/f_N", "F_f,x/f_N", "F_f,y/f_N"}
+        "|F_f|", "F_f,x", "F_f,y"}
 
 
 @pytest.mark.parametrize("key, parity", [("FTx", 1), ("FTy", -1)])
@@ -140,3 +140,21 @@ def test_model_imports_no_plotting_or_app_code():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout
     assert out.strip() == "[]"
+
+
+def test_arrow_labels_part_and_stay_in_view():
+    """v_R and the friction point opposite ways from the mass: their labels run outwards,
+    away from each other; the slab's sits above its arrow, the friction's below its tip;
+    near the view's border a label turns back inside."""
+    from app.figures.scene import FORCE_COLOR, SLAB_COLOR, VREL_COLOR, _arrow_labels
+
+    view = (-2.0, 2.0, -2.0, 2.0)
+    arrows = [((0.0, 0.3), (0.5, 0.3), SLAB_COLOR, "slab V₀"),
+              ((0.0, 0.0), (-0.5, 0.0), VREL_COLOR, "v_R"),
+              ((0.0, 0.0), (0.5, 0.0), FORCE_COLOR, "friction")]
+    labels = _arrow_labels(arrows, *view)
+    assert labels["align"] == ["left", "right", "left"]
+    assert labels["baseline"] == ["bottom", "top", "top"]
+    edge = _arrow_labels([((1.0, 1.9), (1.9, 1.9), SLAB_COLOR, "slab V₀"),
+                          ((-1.0, -1.9), (-1.9, -1.9), FORCE_COLOR, "friction")], *view)
+    assert edge["align"] == ["right", "left"] and edge["baseline"] == ["top", "bottom"]

@@ -15,6 +15,7 @@ from bokeh.models import (Arrow, BoxAnnotation, ColorBar, CustomJS, Div, Label,
 
 from .array_readout import last_counted, readout_text, settled_mean
 from .common import BLACK, BLUE, GREEN, GREY, ORANGE, VERMILION, new_figure, source
+from .player import UI_MS
 
 __all__ = ["array_scene", "array_frames", "direction_palette", "slab_half_width", "view_x",
            "html_key", "ARROW_LENGTH"]
@@ -85,7 +86,7 @@ def _ranges(motion, width, height_limits=(240, 620), max_half: float = 30.0):
 
 
 def array_scene(motion, player, width: int = 1000, panel_height: int = 220,
-                ui_ms: float = 150, responsive: bool = False, panel_ms: float = 100,
+                ui_ms: float = UI_MS, responsive: bool = False, panel_ms: float = 100,
                 top_height: int | None = None):
     """Top view, N_c/N_c0 and F_T,x panels, and a readout, driven by ``player``.
 
@@ -298,8 +299,12 @@ def html_key(items) -> str:
 
 
 def _colorbar_figure(mapper, width, responsive: bool = False):
-    """The colour scale in a figure of its own, which stays still during playback."""
+    """The colour scale in a figure of its own, which stays still during playback: with a
+    copy of the glyphs' colour mapper (a shared one tells the bar to redraw, and its figure
+    to lay itself out again, each time the glyphs map their colours: every frame)."""
     from bokeh.plotting import figure
+
+    mapper = type(mapper)(**mapper.properties_with_values(include_defaults=False))
 
     fig = figure(width=width, height=74, toolbar_location=None, x_axis_type=None,
                  y_axis_type=None, outline_line_color=None, min_border=0,

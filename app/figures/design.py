@@ -156,7 +156,7 @@ def design_polar_figure(sweep=None, distribution: dict | None = None, psi_deg: f
     theta0 = [] if sweep is None else sweep.columns["theta0"]
     values = [] if sweep is None else sweep.columns["FTx_over_mu0FN"]
     fig = polar_figure("FTx", theta0, values, None, width, height)
-    fig.title.text = "Fig. 11a F_T,x/(μ₀F_N) vs θ₀; orange: p(θ₀)"
+    fig.title.text = "Fig. 11a F_T,x/(μ₀F_N); orange: p(θ₀)"  # fits a projected plot
     fig.patch("x", "y", source=source("design_density", data["design_density"]),
               fill_color=ORANGE, fill_alpha=0.3, line_color=ORANGE, line_width=1.5)
     fig.multi_line("xs", "ys", source=source("design_atoms", data["design_atoms"]),

@@ -64,10 +64,10 @@ def forces_figure(series, params=None, frame: int = 0, width: int = 340, height:
                      x_range=Range1d(*force_x_range(series)),
                      y_range=Range1d(*force_y_range(series, m0)))
     src = source("forces", force_data(series)["forces"])
-    fig.line("tau", "F_abs", source=src, line_color=BLACK, line_width=2, legend_label="|F_f|/f_N")
-    fig.line("tau", "F_x", source=src, line_color=BLUE, line_width=2, legend_label="F_f,x/f_N")
+    fig.line("tau", "F_abs", source=src, line_color=BLACK, line_width=2, legend_label="|F_f|")
+    fig.line("tau", "F_x", source=src, line_color=BLUE, line_width=2, legend_label="F_f,x")
     fig.line("tau", "F_y", source=src, line_color=VERMILION, line_width=2,
-             legend_label="F_f,y/f_N")
+             legend_label="F_f,y")  # over f_N, as the axis says: fits a projected plot
     now = source("forces_now", force_now(series, frame)["forces_now"])
     fig.scatter("tau", "F", source=now, size=8, fill_color="white", line_color=BLACK)
     fig.add_layout(Span(location=m0, dimension="width", line_color=GREEN, line_dash="dashed",

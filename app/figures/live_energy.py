@@ -20,8 +20,8 @@ from model.friction import mu
 
 from .common import BLACK, annotation, new_figure, source, sources
 from .histories import ENERGY_COLORS, ENERGY_LABELS, ENERGY_TERMS
-from .scene import (ARROW_SCALE, FORCE_COLOR, SLAB_COLOR, STRIPES, VREL_COLOR, _extent,
-                    view_box)
+from .scene import (ARROW_SCALE, FORCE_COLOR, LABEL_ROOM_X, LABEL_ROOM_Y, SLAB_COLOR, STRIPES,
+                    VREL_COLOR, _extent, view_box)
 
 __all__ = ["energy_frames", "live_energy_figure", "support_frames", "support_frames_callback",
            "ENERGY_KEYS"]
@@ -180,7 +180,7 @@ def support_frames_callback(series, params, n_frames: int, scene=None, forces=No
     args = dict(
         data=source("support_frames", data["support_frames"]),
         fp=source("support_frame_params", data["support_frame_params"]),
-        stripes_n=STRIPES, arrow_scale=ARROW_SCALE,
+        stripes_n=STRIPES, arrow_scale=ARROW_SCALE, room=[LABEL_ROOM_X, LABEL_ROOM_Y],
         colors=[SLAB_COLOR, VREL_COLOR, FORCE_COLOR],
         **{key: named.get(name) for key, name in (
             ("mass", "scene_mass"), ("spring", "scene_spring"), ("twist", "scene_twist"),
@@ -255,9 +255,10 @@ if (arrows) {
   // Labels inside the view, as app.figures.scene._arrow_labels places them.
   const lx = keep.map((a) => Math.min(Math.max(a[2], vx0), vx1));
   const ly = keep.map((a) => Math.min(Math.max(a[3], vy0), vy1));
+  const rx = room[0] * (vx1 - vx0), ry = room[1] * (vy1 - vy0);
   quiet(arrow_labels, {data: {x: lx, y: ly, text: keep.map((a) => a[5]), color: keep.map((a) => a[4]),
-                              align: lx.map((v) => v > (vx0 + vx1) / 2 ? "right" : "left"),
-                              baseline: ly.map((v) => v > vy0 + 0.8 * (vy1 - vy0) ? "top" : "bottom")}});
+                              align: lx.map((v, k) => (v >= keep[k][0] ? v < vx1 - rx : v < vx0 + rx) ? "left" : "right"),
+                              baseline: ly.map((v, k) => (keep[k][4] === colors[0] ? v < vy1 - ry : v < vy0 + ry) ? "bottom" : "top")}});
 }
 quiet(forces_now, {data: {tau: [tau, tau, tau], F: [d.F_x[i], d.F_y[i], d.F_abs[i]]}});
 quiet(friction_now, {data: {v: [d.v_R[i]], mu: [d.mu[i]]}});

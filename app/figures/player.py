@@ -138,8 +138,10 @@ HANDLE_CSS = """
 #: The speed menu as tall as the page's buttons (44 px on a phone and in projector mode).
 SELECT_CSS = "select { min-height: var(--mp-button, 31px) !important; }"
 
-#: Longest interval between updates of the slider and readout while playing [ms].
-UI_MS = 120
+#: Longest interval between updates of the slider and readout while playing [ms]. Each
+#: readout change lays the whole page out again (Bokeh recomputes the layout from the
+#: root when a Div's text changes): half the page's work per frame at 8 updates a second.
+UI_MS = 250
 #: Milliseconds after a served page is up before the player says it is ready (``ready``): the
 #: change must reach the browser after the player's models, which a page sends a turn or
 #: two later (a page built once opened, a result's new figures).

@@ -18,8 +18,8 @@ from .common import BLACK, BLUE, GREY, ORANGE, VERMILION, legend_above, new_figu
 
 #: An odd quantity's curve is drawn in two colours by sign, with these legend labels: its
 #: radius is measured from the bold zero ring, so negative values lie inside it.
-SIGN_LABELS = {"pos": ("outside the bold ring: {name} > 0 (towards +y)", BLUE),
-               "neg": ("inside: {name} < 0 (towards −y)", ORANGE)}
+SIGN_LABELS = {"pos": ("{name} > 0 (+y): outside ring", BLUE),
+               "neg": ("{name} < 0 (−y): inside ring", ORANGE)}
 SIGN_NAMES = {"FTy": "F_T,y"}
 
 #: key -> (column of the orientation sweep, title, parity in theta0)

@@ -194,20 +194,30 @@ def _arrows(series, i, vx0, vx1, vy0, vy1) -> dict:
     }
 
 
+#: Part of the view's width (from the border an arrow points to) where its label turns
+#: back inside the view, and part of its height where a label flips to the other side.
+LABEL_ROOM_X, LABEL_ROOM_Y = 0.3, 0.15
+
+
 def _arrow_labels(arrows, vx0, vx1, vy0, vy1) -> dict:
-    """Each arrow's label at its tip, inside the view: a tip in the right half has its
-    label ending there (left half: starting there), a tip in the top fifth its label
-    below it (else above); a tip outside the view is labelled at the view's border.
-    (The page draws the frames with the same rule: ``app.figures.live_energy``.)"""
+    """Each arrow's label at its tip, running on outwards in the arrow's direction (so the
+    labels of v_R and the friction, opposite arrows from the mass, part), and turned back
+    near the view's border (inside the view); the slab's label above its arrow, the others
+    below their tips (flipped near the top and bottom). A tip outside the view is labelled
+    at the view's border. (The page draws the frames with the same rule:
+    ``app.figures.live_energy``.)"""
     out = {"x": [], "y": [], "text": [], "color": [], "align": [], "baseline": []}
-    for _, (x, y), color, text in arrows:
+    room_x, room_y = LABEL_ROOM_X * (vx1 - vx0), LABEL_ROOM_Y * (vy1 - vy0)
+    for (x0, _), (x, y), color, text in arrows:
         x, y = min(max(x, vx0), vx1), min(max(y, vy0), vy1)
+        right = x >= x0 and x < vx1 - room_x or x < x0 and x < vx0 + room_x
+        above = y < vy1 - room_y if color == SLAB_COLOR else y < vy0 + room_y
         out["x"].append(x)
         out["y"].append(y)
         out["text"].append(text)
         out["color"].append(color)
-        out["align"].append("right" if x > (vx0 + vx1) / 2 else "left")
-        out["baseline"].append("top" if y > vy0 + 0.8 * (vy1 - vy0) else "bottom")
+        out["align"].append("left" if right else "right")
+        out["baseline"].append("bottom" if above else "top")
     return out
 
 

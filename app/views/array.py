@@ -23,10 +23,16 @@ from ..results import SessionResults
 from ..state import ExplorerState
 from ..texts import FELT_WORDS
 from .export import AnimationExport, ResultDownload, svg_button
+from .layout import WIDE, mode_classes
 
 
 #: The tab's figures restyled in projector mode.
 FIGURES = ("array_top", "array_live_panel", "array_colorbar_figure")
+#: Projected, the top view is this much taller (px): its larger title and ticks take
+#: room from the drawing otherwise (it then follows the slab where the travel does not fit).
+PROJECTOR_TOP_EXTRA = 80
+#: Projected, the result text goes below the figures (the headline above says the result).
+PROJECTOR_CSS = f"{WIDE} {{ :host(.projector) .array-status {{ order: 1; }} }}"
 
 
 def result_text(motion, orientation: str) -> str:
@@ -52,6 +58,7 @@ class ArrayView(pn.viewable.Viewer):
         super().__init__(**params)
         self._doc = pn.state.curdoc
         self.player = None
+        self._layout = None  # made by __panel__
         self.toggle = pn.widgets.RadioButtonGroup.from_param(
             self.state.param.orientation, css_classes=["ctl-orientation"],
             options={"θ₀ uniform (all directions)": "uniform",
@@ -92,8 +99,17 @@ class ArrayView(pn.viewable.Viewer):
     @param.depends("state.projector", watch=True)
     def _restyle(self) -> None:
         """Projector mode: the figures' titles, ticks and labels projector-sized."""
+        projector = self.state.projector
         for fig in self._figures():
-            F.style(fig, self.state.projector)
+            F.style(fig, projector)
+            if fig.name == "array_top":
+                base = next((int(t[2:]) for t in fig.tags if str(t).startswith("h:")), None)
+                if base is None:
+                    base = fig.height
+                    fig.tags = [*fig.tags, f"h:{base}"]
+                fig.height = base + (PROJECTOR_TOP_EXTRA if projector else 0)
+        if self._layout is not None:
+            self._layout.css_classes = mode_classes(self._layout.css_classes, projector)
 
     def _figures(self) -> list:
         page = self.pane.object
@@ -111,7 +127,9 @@ class ArrayView(pn.viewable.Viewer):
             self.status.object = "Computing the supports' trajectories …"
 
     def __panel__(self):
-        return pn.Column(self.toggle, self.status, self.pane, self.export,
-                         pn.Row(self.csv, self.svg, margin=0, sizing_mode="stretch_width"),
-                         sizing_mode="stretch_width",
-                         css_classes=["array-tab"])
+        self._layout = pn.Column(
+            self.toggle, self.status, self.pane, self.export,
+            pn.Row(self.csv, self.svg, margin=0, sizing_mode="stretch_width"),
+            sizing_mode="stretch_width", stylesheets=[PROJECTOR_CSS],
+            css_classes=mode_classes(["array-tab"], self.state.projector))
+        return self._layout

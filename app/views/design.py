@@ -31,7 +31,7 @@ from ..urlstate import DESIGN_INPUTS
 from .compare_tables import design_compare_markdown, distribution_words
 from .design_readouts import DesignReadouts
 from .design_upload import HistogramUpload
-from .layout import INPUT_CSS, PHONE, grid_css
+from .layout import INPUT_CSS, PHONE, TOP, WIDE, grid_css, mode_classes, projector_grid
 from .widgets import caption, look
 
 #: Inputs, figures, readouts side by side (the figures take the width left); on a phone
@@ -39,6 +39,17 @@ from .widgets import caption, look
 DESIGN_ROW_CSS = f"""
 :host {{ width: 100% !important; }}
 .design-figures {{ flex: 1 1 0 !important; min-width: 280px; }}
+/* Projected: the figures take the window's width and height; the inputs and readouts
+   follow below the fold, side by side (their larger text fits there). */
+{WIDE} {{
+  :host(.projector) {{ flex-wrap: wrap !important; height: auto !important;
+                      align-content: flex-start; }}
+  :host(.projector) .design-figures {{ order: -1; flex: 0 0 100% !important;
+    width: 100% !important; height: calc(100vh - {TOP}) !important; }}
+  :host(.projector) .design-inputs, :host(.projector) .design-side {{
+    height: auto !important; flex: 1 1 0 !important; min-width: 420px;
+    width: auto !important; }}
+}}
 {PHONE} {{
   :host {{ flex-direction: column !important; min-width: 0 !important; max-width: 100vw;
            height: auto !important; flex: 0 0 auto !important; }}
@@ -49,6 +60,9 @@ DESIGN_ROW_CSS = f"""
                                   max-width: calc(100vw - 8px); }}
 }}
 """
+
+#: Projected, the map and the distribution side by side over the window's height.
+PROJECTED = projector_grid("minmax(0, 1fr)", below=0, columns="minmax(0, 1fr) minmax(0, 1fr)")
 
 FAMILY_LABELS = {"von Mises": "vonmises", "pair ±θ₀": "pair", "fixed θ₀": "fixed",
                  "uniform": "uniform", "histogram (CSV)": "histogram"}
@@ -177,6 +191,7 @@ class DesignView(pn.viewable.Viewer):
         self.map_pane = pn.pane.Bokeh(self.map_figure, margin=0, sizing_mode="stretch_both")
         self.polar_pane = pn.pane.Bokeh(self.polar_figure, margin=0, sizing_mode="stretch_both")
         self._ticker = None
+        self._layouts = []  # made by __panel__
         for fig in (self.map_figure, self.polar_figure):
             F.style(fig, s.projector)
         self._on_point()
@@ -327,6 +342,8 @@ class DesignView(pn.viewable.Viewer):
     def _restyle(self) -> None:
         for fig in (self.map_figure, self.polar_figure):
             F.style(fig, self.state.projector)
+        for layout in self._layouts:
+            layout.css_classes = mode_classes(layout.css_classes, self.state.projector)
 
     def __panel__(self):
         grid = pn.GridBox(*self.inputs.values(), ncols=3, margin=(0, 0))
@@ -339,10 +356,15 @@ class DesignView(pn.viewable.Viewer):
             self.table, self.compare, pn.Row(self.objective, self.bound, margin=0),
             pn.Row(self.optimise_button, self.cancel_button, margin=0),
             self.optimum_text, width=345, css_classes=["design-side"])
+        projector = self.state.projector
         figures = pn.Column(self.map_pane, self.polar_pane, margin=0,
-                            sizing_mode="stretch_both", css_classes=["design-figures"],
+                            sizing_mode="stretch_both",
+                            css_classes=mode_classes(["design-figures"], projector),
                             stylesheets=[grid_css("minmax(0, 1fr)",
                                                   "minmax(0, 1fr) minmax(0, 1fr)",
-                                                  phone_height=360, min_height=600)])
-        return pn.Row(left, figures, right, css_classes=["design-view"],
-                      sizing_mode="stretch_both", stylesheets=[DESIGN_ROW_CSS])
+                                                  phone_height=360, min_height=600,
+                                                  projector=PROJECTED)])
+        row = pn.Row(left, figures, right, css_classes=mode_classes(["design-view"], projector),
+                     sizing_mode="stretch_both", stylesheets=[DESIGN_ROW_CSS])
+        self._layouts = [figures, row]
+        return row

@@ -124,21 +124,52 @@ INPUT_CSS = (f"{PHONE} {{ .bk-input, .bk-btn {{ min-height: 44px !important; }} 
              f".bk-spin-wrapper {{ display: none !important; }} }}")
 
 
+#: The page's top as the grids see it (header, notices, headline; two lines projected).
+TOP = "(var(--mp-top, 90px) + var(--mp-wrap, 0) * var(--mp-top-extra, 0px))"
+
+
+def projector_grid(rows: str, below: int, spans: dict | None = None,
+                   columns: str | None = None) -> dict:
+    """A grid's layout in projector mode (``grid_css(projector=...)``): ``rows`` whose
+    first track(s) fill the window below the page's top, and ``below`` px more under the
+    fold for the secondary figures; ``spans`` maps a child's CSS class to its placement
+    (CSS declarations, e.g. ``"grid-row: 3;"``)."""
+    return {"rows": rows, "below": below, "spans": spans or {}, "columns": columns}
+
+
+def mode_classes(classes: list, projector: bool) -> list:
+    """A view's CSS classes with ``projector`` added (projector mode) or removed."""
+    return [c for c in classes if c != "projector"] + (["projector"] if projector else [])
+
+
 def grid_css(columns: str, rows: str, spans: dict | None = None, phone_height: int = 360,
-             min_height: int = 480) -> str:
+             min_height: int = 480, projector: dict | None = None) -> str:
     """A grid of figures ``columns`` x ``rows`` (CSS track lists) as tall as the window
     below the page's top; ``spans`` maps a child's CSS class to its ``grid-column``. On a
-    phone: one column, every figure ``phone_height`` px high."""
+    phone: one column, every figure ``phone_height`` px high.
+
+    ``projector`` (``projector_grid``) lays the grid out anew when the view carries the
+    CSS class ``projector`` (projection on a wide screen): the main figure keeps the
+    window's height, secondary figures go below the fold."""
     span = "".join(f".{cls} {{ grid-column: {col}; }}\n" for cls, col in (spans or {}).items())
+    if projector:
+        area = "".join(f"  :host(.projector) .{cls} {{ {rule} }}\n"
+                       for cls, rule in projector["spans"].items())
+        cols = (f"grid-template-columns: {projector['columns']};"
+                if projector["columns"] else "")
+        span += f"""{WIDE} {{
+  :host(.projector) {{ {cols} grid-template-rows: {projector['rows']};
+    height: calc(100vh - {TOP} + {projector['below']}px) !important;
+    min-height: calc(100vh - {TOP} + {projector['below']}px); }}
+{area}}}
+"""
     return f"""
 :host {{
   display: grid !important; grid-template-columns: {columns}; grid-template-rows: {rows};
-  height: calc(100vh - var(--mp-top, 90px) - var(--mp-wrap, 0) * var(--mp-top-extra, 0px))
-    !important;
+  height: calc(100vh - {TOP}) !important;
   /* Never shrunk below the window by what follows it (the readouts below the plots in
      projector mode are a scroll away). */
-  min-height: max({min_height}px,
-    calc(100vh - var(--mp-top, 90px) - var(--mp-wrap, 0) * var(--mp-top-extra, 0px)));
+  min-height: max({min_height}px, calc(100vh - {TOP}));
   width: 100% !important; gap: 2px 6px; align-items: stretch;
   flex: 0 1 auto !important;  /* its own height, not the tallest tab's */
 }}

@@ -306,6 +306,7 @@ class Dashboard(pn.viewable.Viewer):
             scroll=True, styles={"max-height": "calc(100vh - 50px)"},
             stylesheets=[SIDEBAR_CSS])
         self.sidebar.param.watch(self._size_sidebar, "collapsed")
+        self.sidebar.collapsed = self.state.projector  # projected: the figures take the room
         main = pn.Column(self.preparing,
                          pn.Row(self.alert, self.dismiss, sizing_mode="stretch_width",
                                 stylesheets=[SHRINK_CSS]),

@@ -34,13 +34,17 @@ from ..figures.scene import view_box
 from ..results import SessionResults
 from ..state import ExplorerState
 from .export import AnimationExport
-from .layout import grid_css
+from .layout import grid_css, mode_classes, projector_grid
 
 
 log = logging.getLogger(__name__)
 
 #: Frames of the animation of one contact (the browser draws them at 30 per second at 1x).
 N_FRAMES = 300
+#: Projected, the top view and Fig. 7 take the window's height above the player (the top
+#: view wider); Fig. 3 and the energy split go below the fold.
+PROJECTED = projector_grid("minmax(0, 1fr) auto 380px", below=380,
+                           columns="minmax(0, 3fr) minmax(0, 2fr)")
 
 
 def _placeholder_energies(n: int) -> dict:
@@ -76,6 +80,7 @@ class SupportView(pn.viewable.Viewer):
         for fig in self.figures:
             self._sources.update(F.sources(fig))
         self._frames_js = None  # made with the first trajectory
+        self._layout = None  # the grid, made by __panel__
         self._pinned = {self.scene: add_pinned(self.scene, "scene", "orbit"),
                         self.forces: add_pinned(self.forces, "forces", "forces")}
         for fig in self._pinned:
@@ -183,6 +188,8 @@ class SupportView(pn.viewable.Viewer):
         with self._hold():
             for fig in self.figures:
                 F.style(fig, projector)
+            if self._layout is not None:
+                self._layout.css_classes = mode_classes(self._layout.css_classes, projector)
 
     def __panel__(self):
         scene, forces, friction, energy = self._panes
@@ -190,10 +197,12 @@ class SupportView(pn.viewable.Viewer):
         # stretch_width container, with a warning, at every page build).
         player = pn.Row(self._player_pane, self.spinner, css_classes=["player-row"],
                         sizing_mode="stretch_both", margin=0)
-        return pn.Column(
-            scene, forces, player, friction, energy, css_classes=["support-view"],
+        self._layout = pn.Column(
+            scene, forces, player, friction, energy,
+            css_classes=mode_classes(["support-view"], self.state.projector),
             margin=0, sizing_mode="stretch_both",
             stylesheets=[grid_css("minmax(0, 1fr) minmax(0, 1fr)",
                                   "minmax(0, 3fr) auto minmax(0, 2fr)",
-                                  {"player-row": "1 / span 2"})])
+                                  {"player-row": "1 / span 2"}, projector=PROJECTED)])
+        return self._layout
 

@@ -1,0 +1,151 @@
+"""Projector mode as a class sees it: at 1280x720 and 1920x1080 with ``?projector=1``, on
+every tab, the page never scrolls sideways, the main figure is drawn at least as large as
+in normal mode, every figure's text is at least the projector minimum, legends, titles,
+colour bars and the top view's arrow labels lie inside their figure and do not overlap,
+and the headline is above the fold.
+
+Sizes are read in the page: the Bokeh views' boxes (``Bokeh.index``), their frames (the
+drawn plot area) and their annotations' boxes.
+"""
+from __future__ import annotations
+
+import pytest
+
+from app.figures.common import MIN_TEXT_PX, PROJECTOR_SCALE
+
+from . import page_tools as pt
+from . import phone_tools
+
+pytestmark = [pytest.mark.browser, pytest.mark.timeout(600)]
+
+SCREENS = {"1280x720": {"width": 1280, "height": 720},
+           "1920x1080": {"width": 1920, "height": 1080}}
+#: tab key -> (tab-bar label, its main figure or None)
+TABS = {"support": ("One support", "scene"), "array": ("Array", "array_top"),
+        "polar": ("Orientation (polar)", "polar_FTx"), "map": ("Regime map", "regime_map"),
+        "load": ("Load", "load"), "equations": ("Equations", None),
+        "design": ("Design", "regime_map")}
+PROJECTOR_MIN_PX = MIN_TEXT_PX * PROJECTOR_SCALE
+
+# The visible figures: page box, frame (drawn plot area, in the figure's canvas), and the
+# boxes of their legends, titles and colour bars; the text boxes of the top view's arrow
+# labels (from the label data through the frame's scales, measured with the label font).
+_FIGURES_JS = """() => {
+  const out = {};
+  const ctx = document.createElement("canvas").getContext("2d");
+  for (const m of Bokeh.documents[0].all_models) {
+    if (!("x_range" in m) || !("renderers" in m)) continue;
+    const v = Bokeh.index.find_one(m);
+    if (!v || !v.el.checkVisibility({visibilityProperty: true, opacityProperty: true}))
+      continue;
+    const r = v.el.getBoundingClientRect();
+    if (r.width < 1 || r.height < 1) continue;
+    const f = v.frame.bbox;
+    const parts = [];
+    for (const [model, view] of v.renderer_views) {
+      if (!["Legend", "Title", "ColorBar"].includes(model.type) || !view.bbox) continue;
+      const b = view.bbox;
+      const empty = model.type === "Legend" && !model.items.some((i) => i.visible !== false);
+      if (b.width > 0 && b.height > 0 && !empty)
+        parts.push({what: model.type, box: [b.left, b.top, b.width, b.height]});
+    }
+    const labels = [];
+    for (const a of m.center) {
+      if (a.name !== "scene_arrow_labels") continue;
+      const data = a.source.data instanceof Map ? Object.fromEntries(a.source.data) : a.source.data;
+      const size = parseFloat(a.text_font_size.value ?? a.text_font_size);
+      ctx.font = `${size}px sans-serif`;
+      const xs = v.frame.x_scale, ys = v.frame.y_scale;
+      for (let i = 0; i < data.text.length; i++) {
+        const w = ctx.measureText(data.text[i]).width, h = size;
+        const x = xs.compute(data.x[i]), y = ys.compute(data.y[i]);
+        const left = data.align[i] === "right" ? x - w : data.align[i] === "center" ? x - w / 2 : x;
+        const top = data.baseline[i] === "top" ? y : data.baseline[i] === "bottom" ? y - h : y - h / 2;
+        labels.push({text: data.text[i], box: [left, top, w, h]});
+      }
+    }
+    out[m.name] = {page: [r.left, r.top, r.width, r.height],
+                   frame: [f.left, f.top, f.width, f.height], parts, labels};
+  }
+  return out;
+}"""
+
+
+def _inside(inner, outer, slack=1.0) -> bool:
+    return (inner[0] >= outer[0] - slack and inner[1] >= outer[1] - slack
+            and inner[0] + inner[2] <= outer[0] + outer[2] + slack
+            and inner[1] + inner[3] <= outer[1] + outer[3] + slack)
+
+
+def _overlap(a, b) -> bool:
+    return (a[0] < b[0] + b[2] and b[0] < a[0] + a[2]
+            and a[1] < b[1] + b[3] and b[1] < a[1] + a[3])
+
+
+def _show(page, url: str, tab: str) -> dict:
+    """Open ``url`` on ``tab``; the visible figures once the page is at rest."""
+    pt.wait_for_app(page, f"{url}&tab={tab}" if "?" in url else f"{url}?tab={tab}", 90_000)
+    main = TABS[tab][1]
+    if main:
+        pt.wait_for_plot(page, main, 60_000)
+    pt.settle(page, quiet_ms=1000, timeout_ms=30_000)
+    page.wait_for_timeout(500)
+    return page.evaluate(_FIGURES_JS)
+
+
+@pytest.fixture(scope="module", params=list(SCREENS))
+def screen(request, browser, app_url):
+    """Per screen size: every tab's figures in normal mode, and a projector-mode page."""
+    size = SCREENS[request.param]
+    normal = browser.new_context(viewport=size)
+    page = normal.new_page()
+    measured = {tab: _show(page, app_url, tab) for tab, (_, main) in TABS.items() if main}
+    normal.close()
+    projected = browser.new_context(viewport=size)
+    projected.set_default_timeout(60_000)
+    yield size, measured, projected.new_page()
+    projected.close()
+
+
+@pytest.mark.parametrize("tab", list(TABS))
+def test_projector_mode_helps_every_tab(screen, app_url, tab):
+    size, normal, page = screen
+    figures = _show(page, f"{app_url}?projector=1", tab)
+    found = phone_tools.scan(page, min_text=0, min_target=0)
+    assert found["scroll_width"] <= size["width"], \
+        f"{tab}: the page scrolls sideways ({found['scroll_width']} > {size['width']} px)"
+
+    headline = page.locator(".headline").first
+    if headline.is_visible():
+        box = headline.bounding_box()
+        assert box["y"] + min(box["height"], 40) <= size["height"], f"{tab}: headline below the fold"
+
+    main = TABS[tab][1]
+    if main:
+        assert main in figures, f"{tab}: {main} not shown (shown: {sorted(figures)})"
+        _, _, w, h = figures[main]["frame"]
+        _, _, w0, h0 = normal[tab][main]["frame"]
+        print(f"{tab} {size['width']}x{size['height']}: {main} drawn {w:.0f}x{h:.0f} px "
+              f"projected, {w0:.0f}x{h0:.0f} px normal")
+        # The area at least as large; its shorter side may give a little to the larger
+        # headline above it, never much (a sliver is no larger figure).
+        assert w * h >= 0.97 * w0 * h0 and min(w, h) >= 0.85 * min(w0, h0), \
+            f"{tab}: {main} is drawn smaller projected ({w:.0f}x{h:.0f}) than normal ({w0:.0f}x{h0:.0f})"
+        top = figures[main]["page"][1]
+        assert top < size["height"] * 0.5, f"{tab}: {main} starts at {top:.0f} px"
+
+    small = [t for t in phone_tools.canvas_text_sizes(page)
+             if t["figure"] in figures and t["size"] < PROJECTOR_MIN_PX - 0.5]
+    assert not small, f"{tab}: figure text under {PROJECTOR_MIN_PX:g} px projected: {small[:6]}"
+
+    for name, fig in figures.items():
+        canvas = [0, 0, fig["page"][2], fig["page"][3]]
+        out = [p for p in fig["parts"] if not _inside(p["box"], canvas)]
+        assert not out, f"{tab}: {name}'s {[p['what'] for p in out]} run out of the figure: {out}"
+        labels = fig["labels"]
+        for label in labels:
+            assert _inside(label["box"], canvas), f"{tab}: {name}'s label {label} is cut off"
+        for i, a in enumerate(labels):
+            for b in labels[i + 1:]:
+                assert not _overlap(a["box"], b["box"]), \
+                    f"{tab}: {name}'s labels {a['text']!r} and {b['text']!r} overlap: {a}, {b}"
