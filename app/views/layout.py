@@ -34,11 +34,11 @@ ROOT_PROJECTOR = {"--bokeh-font-size": "18px", "font-size": "18px", "color": "#0
 SHRINK_CSS = (f"{PHONE} {{ :host {{ min-width: 0 !important; max-width: 100vw; "
               "height: auto !important; flex: 0 0 auto !important; } }")
 
-#: Projected on a screen narrower than 1700 px the headline takes two lines
-#: (``--mp-wrap`` is 1 in projector mode only).
+#: Projected, the headline (its two results in words) takes two lines, up to 1920 px and
+#: beyond (``--mp-wrap`` is 1 in projector mode only).
 ROOT_CSS = f"""
 :host {{ width: 100%; }}
-@media (min-width: {NARROW_PX + 1}px) and (max-width: 1700px) {{
+{WIDE} {{
   :host {{ --mp-top-extra: 30px; }}
 }}
 {PHONE} {{
