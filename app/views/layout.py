@@ -26,7 +26,7 @@ ROOT_PROJECTOR = {"--bokeh-font-size": "18px", "font-size": "18px", "color": "#0
                   "--mp-top": "98px", "--mp-handle": "30px", "--mp-track": "12px",
                   "--mp-button": "44px", "--mp-side-direction": "column",
                   "--mp-side-width": "calc(100% - 8px)", "--mp-side-wide": "400px",
-                  "--mp-card-header": "flex", "--mp-text-width": "clamp(250px, 22vw, 420px)",
+                  "--mp-card-header": "flex", "--mp-text-width": "clamp(250px, 22vw, 360px)",
                   "--mp-wrap": "1", "--mp-keys": "none"}
 
 #: On a phone a container may be narrower than its children's desktop sizes (Bokeh sets
