@@ -24,7 +24,9 @@ The touches, and what each buys:
    4301 digits, and the page stops syncing (``docs/upstream/parse_query_digits.py``).
 4. **Panel's text views drawn late** (``MARKUP_GUARD_JS``, in the page): a change of
    ``visible`` reaching a markup view built but not yet drawn throws in Panel's view
-   (``docs/upstream/markup_visible_before_drawn.py``).
+   (``docs/upstream/markup_visible_before_drawn.py``); likewise a change of ``disabled``
+   reaching a control (a FileDownload on a tab not drawn yet) threw "Cannot read
+   properties of undefined (reading 'removeAttribute')": its undrawn elements are skipped.
 """
 from __future__ import annotations
 
@@ -168,6 +170,35 @@ if (base != null && Object.getOwnPropertyDescriptor(base, "container") == null) 
     get() { return this._drawn_container ?? document.createElement("div"); },
     set(value) { this._drawn_container = value; },
   });
+}
+// Likewise a control's ``disabled`` handler reaches its elements (``controls()``: for
+// Panel's FileDownload its anchor and button) before the view has drawn them: until then
+// the undrawn ones are skipped (the drawing reads ``disabled`` from the model).
+for (const name of Bokeh.Models.names ?? []) {
+  let proto = null;
+  try { proto = Bokeh.Models.get(name)?.prototype?.default_view?.prototype ?? null; }
+  catch (e) { proto = null; }
+  if (proto == null || !Object.prototype.hasOwnProperty.call(proto, "controls")
+      || proto.controls.mp_guarded) continue;
+  const controls = proto.controls;
+  const drawn = function* () { for (const el of controls.call(this)) if (el != null) yield el; };
+  drawn.mp_guarded = true;
+  proto.controls = drawn;
+}
+// Panel's FileDownload updates its label, file name and style on its drawn anchor: until
+// the view is drawn those updates wait for the drawing, which reads the model anew.
+const download = Bokeh.Models.get("panel.models.widgets.FileDownload");
+const dl = download == null ? null : download.prototype.default_view.prototype;
+for (const method of ["_update_label", "_update_download", "_update_href",
+                      "_update_button_style", "_handle_click"]) {
+  const original = dl == null ? null : dl[method];
+  if (typeof original !== "function" || original.mp_guarded) continue;
+  const guarded = function (...args) {
+    if (this.anchor_el == null || this.label_el == null) return undefined;
+    return original.apply(this, args);
+  };
+  guarded.mp_guarded = true;
+  dl[method] = guarded;
 }
 """
 
