@@ -277,11 +277,15 @@ def test_the_headline_states_the_result_in_words(page, app_url):
     text = headline.inner_text()
     print(text)
     assert re.search(r"^Friction is \d+\.\d % (below|above) a rigid surface \(every support "
-                     r"at θ₀ = 90°\); averaged over all orientations: ", text), text
-    # The uniform array's number, or the reason it is missing (a notice on the page).
-    tail = text.split("averaged over all orientations: ")[1]
-    assert re.match(r"\d+\.\d % (below|above) a rigid surface\.$", tail) or (
-        tail == "not computed (see the notice)." and page.locator(".page-notice").is_visible())
+                     r"at θ₀ = 90°\); ", text), text
+    # The force the slab feels with supports of all orientations (the uniform array's
+    # duration-weighted average, in words), or the reason it is missing (a notice).
+    felt = re.search(r"; with supports of all orientations the slab feels \d+\.\d % "
+                     r"(below|above) a rigid surface \(each support counted for as long as "
+                     r"it touches the slab\)\.$", text)
+    assert felt or (text.endswith("what the slab feels with supports of all orientations: "
+                                  "not computed (see the notice).")
+                    and page.locator(".page-notice").is_visible()), text
     details = page.locator(".readout-details")
     assert not page.get_by_text("energy residual").first.is_visible()
     details.get_by_text("Numbers and diagnostics").click()
