@@ -68,6 +68,8 @@ def test_each_documented_command_runs(command, tmp_path):
     if argv[0] == "python":
         argv[0] = sys.executable
     else:  # an installed script
-        argv[0] = shutil.which(argv[0]) or pytest.skip(f"{argv[0]} is not installed")
+        found = shutil.which(argv[0])
+        assert found, f"{argv[0]} is not installed (the README's install puts it on PATH)"
+        argv[0] = found
     out = subprocess.run(argv, cwd=tmp_path, capture_output=True, text=True, timeout=1800)
     assert out.returncode == 0, f"{command}\nexit {out.returncode}\n{out.stderr[-2000:]}"
