@@ -27,6 +27,9 @@ The touches, and what each buys:
    (``docs/upstream/markup_visible_before_drawn.py``); likewise a change of ``disabled``
    reaching a control (a FileDownload on a tab not drawn yet) threw "Cannot read
    properties of undefined (reading 'removeAttribute')": its undrawn elements are skipped.
+   The same page code gives the "Figure (SVG)" buttons ``window.mp_export_svg``: BokehJS
+   offers a figure's SVG only through its drawn view (what the toolbar's save tool does
+   for a figure drawn in SVG); on another stack the buttons point to the save tool.
 """
 from __future__ import annotations
 
@@ -200,6 +203,30 @@ for (const method of ["_update_label", "_update_download", "_update_href",
   guarded.mp_guarded = true;
   dl[method] = guarded;
 }
+// The page's "Figure (SVG)" buttons (app/views/export.py) call this: each figure named
+// (none named: every figure on screen) is exported by its own drawn view, as the
+// toolbar's save tool does for a figure drawn in SVG, whatever backend draws it here.
+window.mp_export_svg = function (names, prefix) {
+  const wanted = new Set(names);  // empty: every figure on screen
+  for (const doc of Bokeh.documents) {
+    for (const model of doc.all_models) {
+      if (typeof model.output_backend !== "string" || model.name == null) continue;
+      if (wanted.size > 0 && !wanted.has(model.name)) continue;
+      const view = Bokeh.index.find_one(model);
+      // Drawn and on screen (a hidden tab's figures have no boxes).
+      if (view == null || !view.el.isConnected || view.el.getClientRects().length === 0
+          || view.bbox.width === 0) continue;
+      view.export("svg").to_blob().then((blob) => {
+        const link = document.createElement("a");
+        link.href = URL.createObjectURL(blob);
+        link.download = `${prefix}${model.name}.svg`;
+        document.body.appendChild(link);
+        link.click();
+        link.remove();
+      });
+    }
+  }
+};
 """
 
 

@@ -150,22 +150,30 @@ async def _abuse_and_visit(base: str, queries: list[str]) -> dict:
     async def visit():
         await asyncio.sleep(VISITOR_DELAY_S)
         visitor = Session(0, base, query=VISITOR_QUERY, source=VISITOR_SOURCE)
-        out = {"first_plot_s": None, "open_s": None, "downloads": [], "error": ""}
+        out = {"first_plot_s": None, "open_s": None, "compute_answer_s": None,
+               "downloads": [], "error": ""}
         try:
             await visitor.open()
             out["open_s"] = visitor.open_s
             out["first_plot_s"] = await visitor.first_plot()
-            # The polar CSV while the abuse goes on: answered at once, with a note while
-            # the sweep is computed, then with the sweep.
+            # The polar CSV while the abuse goes on. Off its tab the sweep is not computed
+            # by itself: its button asks for it ("Compute polar sweep CSV"), and must answer
+            # at once (the download button shows "computing…"); the file comes once the
+            # sweep is there.
+            if visitor.visible("download-polar-compute"):
+                start = time.perf_counter()
+                await visitor.click("download-polar-compute")
+                while visitor.visible("download-polar-compute") and (
+                        time.perf_counter() - start < CSV_WITHIN_S):
+                    await visitor.changed(CSV_WITHIN_S)
+                out["compute_answer_s"] = time.perf_counter() - start
             deadline = time.perf_counter() + CSV_WITHIN_S
-            while time.perf_counter() < deadline:
-                seconds, text = await visitor.download("download-polar")
-                rows = [l for l in text.splitlines() if l and not l.startswith("#")]
-                out["downloads"].append({"seconds": seconds, "rows": max(0, len(rows) - 1),
-                                         "note": "" if rows else text.strip()[:120]})
-                if rows:
-                    break
-                await asyncio.sleep(1.0)
+            while not visitor.enabled("download-polar") and time.perf_counter() < deadline:
+                await visitor.changed(deadline - time.perf_counter())
+            seconds, text = await visitor.download("download-polar")
+            rows = [l for l in text.splitlines() if l and not l.startswith("#")]
+            out["downloads"].append({"seconds": seconds, "rows": max(0, len(rows) - 1),
+                                     "note": "" if rows else text.strip()[:120]})
         except Exception as exc:  # noqa: BLE001 - reported
             out["error"] = f"{type(exc).__name__}: {exc}"
         finally:
@@ -227,9 +235,11 @@ def run(requests: int = 20, out: Path | str = "bench-out", settle_s: float = 5.0
         f"ordinary visitor's first plot within {FIRST_PLOT_BOUND_S:g} s": (
             visitor["first_plot_s"] is not None
             and visitor["first_plot_s"] <= FIRST_PLOT_BOUND_S),
-        f"polar CSV button answers within {DOWNLOAD_BOUND_S:g} s": bool(
+        f"polar CSV buttons answer within {DOWNLOAD_BOUND_S:g} s": bool(
             visitor["downloads"]) and all(d["seconds"] <= DOWNLOAD_BOUND_S
-                                          for d in visitor["downloads"]),
+                                          for d in visitor["downloads"]) and (
+            visitor["compute_answer_s"] is None
+            or visitor["compute_answer_s"] <= DOWNLOAD_BOUND_S),
         "polar CSV delivered with its rows": bool(visitor["downloads"]) and (
             visitor["downloads"][-1]["rows"] > 0),
         "no server errors": not server_errors,
@@ -265,7 +275,9 @@ def markdown(r: dict) -> str:
         + (f"{v['open_s']:.2f} s" if v["open_s"] is not None else "none") + ", first plot "
         + (f"{v['first_plot_s']:.2f} s" if v["first_plot_s"] is not None else "none")
         + (f" ({v['error']})" if v["error"] else ""),
-        "- its polar CSV button, clicked until the sweep came: "
+        "- its polar CSV: 'Compute' answered in "
+        + (f"{v['compute_answer_s']:.2f} s" if v.get("compute_answer_s") is not None
+           else "- (not asked)") + "; the download: "
         + ("; ".join(f"{d['seconds']:.2f} s -> " + (f"{d['rows']} rows" if d["rows"]
                                                       else repr(d["note"][:60]))
                      for d in v["downloads"]) or "no answer"),

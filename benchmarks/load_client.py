@@ -200,6 +200,30 @@ class Session:
         payload = button.data.split(",", 1)[-1]
         return time.perf_counter() - start, base64.b64decode(payload).decode("utf-8")
 
+    async def click(self, css_class: str) -> None:
+        """Press the ``Button`` with ``css_class`` as BokehJS does: a ``button_click``
+        event sent to the server in a ``PATCH-DOC``."""
+        from bokeh.document.events import MessageSentEvent
+        from bokeh.events import ButtonClick
+
+        button = self._find(css_class)
+        event = MessageSentEvent(self.doc, "bokeh_event", ButtonClick(button))
+        await self.protocol.create("PATCH-DOC", [event]).send(self.conn)
+
+    def visible(self, css_class: str) -> bool:
+        return bool(self._find(css_class).visible)
+
+    def enabled(self, css_class: str) -> bool:
+        return not self._find(css_class).disabled
+
+    async def changed(self, timeout: float) -> None:
+        """Wait for the server's next change to the page (at most ``timeout`` s)."""
+        self._patched.clear()
+        try:
+            await asyncio.wait_for(self._patched.wait(), timeout=timeout)
+        except asyncio.TimeoutError:
+            pass
+
     def _find(self, css_class: str):
         for model in self.doc.models:
             if css_class in (getattr(model, "css_classes", None) or ()):

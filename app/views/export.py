@@ -137,29 +137,12 @@ class ResultDownload(pn.viewable.Viewer):
         return pn.Column(self.compute, self.download, sizing_mode="stretch_width", margin=0)
 
 
-#: Saves Bokeh figures of the page, by name, as SVG files: each figure drawn on screen is
-#: exported by its own view (BokehJS ``PlotView.export("svg")``, what the toolbar's save
-#: tool does for a figure drawn in SVG), whatever backend draws it on the page.
+#: A figure's SVG is exported by its drawn BokehJS view: the server's page code
+#: (``app/edge.py``, on the tested stack) offers that as ``window.mp_export_svg``;
+#: without it the button points to the toolbar's save tool.
 SVG_JS = """
-const wanted = new Set(names);  // empty: every figure on screen
-for (const doc of Bokeh.documents) {
-  for (const model of doc.all_models) {
-    if (typeof model.output_backend !== "string" || model.name == null) continue;
-    if (wanted.size > 0 && !wanted.has(model.name)) continue;
-    const view = Bokeh.index.find_one(model);
-    // Drawn and on screen (a hidden tab's figures have no boxes).
-    if (view == null || !view.el.isConnected || view.el.getClientRects().length === 0
-        || view.bbox.width === 0) continue;
-    view.export("svg").to_blob().then((blob) => {
-      const link = document.createElement("a");
-      link.href = URL.createObjectURL(blob);
-      link.download = `${prefix}${model.name}.svg`;
-      document.body.appendChild(link);
-      link.click();
-      link.remove();
-    });
-  }
-}
+if (typeof window.mp_export_svg === "function") window.mp_export_svg(names, prefix);
+else alert("Save a figure with the save tool of its toolbar.");
 """
 
 
