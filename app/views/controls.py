@@ -100,10 +100,11 @@ class Controls(pn.viewable.Viewer):
             state.param.average, css_classes=["ctl-average"],
             options={"paper (Eq. 10)": "paper", "duration-weighted": "duration"},
             sizing_mode="stretch_width", margin=(2, 10))
-        self.advanced = pn.Card(
-            self.rtol, pn.pane.Markdown("Load factor β = N_c0/N_c", margin=(0, 10)),
-            self.beta_mode, self.beta,
-            pn.pane.Markdown("Uniform-array average", margin=(0, 10)), self.average,
+        self.advanced = pn.Card(  # one column: see ReadoutsView.details
+            pn.Column(self.rtol, pn.pane.Markdown("Load factor β = N_c0/N_c", margin=(0, 10)),
+                      self.beta_mode, self.beta,
+                      pn.pane.Markdown("Uniform-array average", margin=(0, 10)), self.average,
+                      sizing_mode="stretch_width", margin=0),
             title="Advanced options", collapsed=True, css_classes=["ctl-advanced"],
             sizing_mode="stretch_width", margin=(4, 3))
         self.pin = self._button("Pin as A", "ctl-pin", "primary",

@@ -171,8 +171,13 @@ class ReadoutsView(pn.viewable.Viewer):
         # rendering the pane's text again (twice per slider move, for a folded card).
         self.uniform_holder = pn.Column(self.uniform_pane, sizing_mode="stretch_width",
                                         margin=0)
+        # One column in the card: folded, the card hides its children by setting their
+        # ``visible`` in the page; a pane whose text changes each move would be sent
+        # ``visible`` again by the server, shown, hidden again and the page laid out
+        # twice per move. The column itself never changes.
         self.details = pn.Card(
-            self.fixed_pane, self.uniform_holder, title="Numbers and diagnostics",
+            pn.Column(self.fixed_pane, self.uniform_holder, sizing_mode="stretch_width",
+                      margin=0), title="Numbers and diagnostics",
             collapsed=True, css_classes=["readout-details"], sizing_mode="stretch_width",
             margin=(6, 5))
         self._compare()

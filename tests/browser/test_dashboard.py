@@ -117,6 +117,26 @@ def test_moving_a_slider_changes_the_plotted_data(page, page_log, app_url, contr
     _no_errors(page_log)
 
 
+def test_a_slider_move_shows_or_hides_nothing(page, page_log, app_url):
+    """A move changes data, ranges and texts; no view's visibility goes back and forth
+    between server and page (a folded card's pane, sent ``visible`` each move, was shown,
+    hidden again by the card and the whole page laid out twice: ~0.4 s per move)."""
+    sent, received = [], []
+    page.on("websocket", lambda ws: (
+        ws.on("framesent", lambda p: sent.append(p) if isinstance(p, str) else None),
+        ws.on("framereceived", lambda p: received.append(p) if isinstance(p, str) else None)))
+    _open(page, app_url)
+    before = pt.data_sources(page, ORBIT)
+    n_sent, n_received = len(sent), len(received)
+    pt.move_slider(page, _handle(page, "theta0"), "ArrowRight", presses=2)
+    assert pt.wait_for_data_change(page, before, ORBIT, timeout_s=30), "the orbit did not change"
+    pt.settle(page, quiet_ms=500)
+    toggled = [f[:200] for f in sent[n_sent:] + received[n_received:]
+               if '"attr":"visible"' in f.replace(" ", "")]
+    assert toggled == [], f"visibility sent back and forth on a move: {toggled}"
+    _no_errors(page_log)
+
+
 @pytest.mark.parametrize("preset", ["soft", "slider"])
 def test_a_preset_button_changes_the_orbit(page, page_log, app_url, preset):
     _open(page, app_url)
