@@ -1,4 +1,4 @@
-# The dashboard (`panel serve app`) in a container; see "Deploying with Docker" in README.md.
+# The dashboard (`panel serve app`) in a container; see docs/deploying.md.
 #
 #   docker build -t micropillar-friction .
 #   docker run --rm -p 5006:5006 micropillar-friction      # http://localhost:5006/app
@@ -15,7 +15,7 @@ FROM python:3.11.14-slim-bookworm
 # PYTHONMALLOC=malloc, MALLOC_ARENA_MAX=2: glibc's allocator, in two arenas, for every
 #   object: the server hands a class's memory back once it has left (1.06 x the start
 #   instead of 1.19 x with CPython's own, whose 1 MB arenas stay while a single object in
-#   them lives; same CPU per update; README "Load").
+#   them lives; same CPU per update; docs/performance.md, "Load").
 ENV PYTHONUNBUFFERED=1 \
     PYTHONMALLOC=malloc \
     MALLOC_ARENA_MAX=2 \

@@ -1,4 +1,4 @@
-"""The rules of the code's layout (README "Architecture").
+"""The rules of the code's layout (docs/architecture.md).
 
 * The dashboard's data flows one way: controls -> ``SessionResults`` -> views. A view
   module imports no other view module (only ``page`` composes them), a view is made from
