@@ -49,12 +49,41 @@ class OrientationSweep(ArrayResult):
 def orientation_sweep(params: Params, theta0, beta="self", rtol: float = 1e-6,
                       atol: float | None = None, method: str = "auto",
                       beta_xtol: float = 1e-8) -> OrientationSweep:
-    """Fixed-orientation arrays for every value in ``theta0`` (radians).
+    """Fixed-orientation arrays for every value in ``theta0``, in one compiled batch call.
 
-    ``beta="self"`` (default) solves beta = L0/tau_out(beta) for each orientation with a
-    bracketed root finder; a number uses that fixed load factor (1 = no correction).
-    ``params`` gives the springs, load and friction law: its theta0 must be left at the
-    default and its beta at 1 (or equal to ``beta``); ``ValueError`` otherwise.
+    Each array has all its supports at one rest orientation, so one contact is the array
+    (Figs. 10f, 11: F_T,x, F_T,y over mu0 F_N, D_y/D_x, N_c/N_c0 against theta0).
+
+    Parameters
+    ----------
+    params : Params
+        The springs, load and friction law; its theta0 must be left at the default and
+        its beta at 1 (or equal to ``beta``): ``ValueError`` otherwise.
+    theta0 : array_like
+        Rest orientations [rad], measured from the sliding direction +x.
+    beta : "self" or float, default "self"
+        ``"self"`` solves beta = L0/tau_out(beta) for each orientation with a bracketed
+        root finder (Illinois); a number uses that fixed load factor (1 = no correction).
+    rtol, atol, method
+        Solver settings of each contact, as in ``simulate_support``.
+    beta_xtol : float, default 1e-8
+        Tolerance of the self-consistent beta.
+
+    Returns
+    -------
+    OrientationSweep
+        Every quantity an array over ``theta0``; ``beta`` the load factor each array was
+        computed with.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from model import REGIMES, orientation_sweep
+    >>> sweep = orientation_sweep(REGIMES["pendulum"], np.linspace(0.5, 2.5, 3))
+    >>> sweep.FTx_over_mu0FN.round(3)     # F_T,x / (mu0 F_N) at each theta0
+    array([0.995, 0.952, 0.895])
+    >>> sweep.beta.round(3)               # self-consistent N_c0 / N_c
+    array([0.97 , 0.904, 0.833])
     """
     start = time.perf_counter()
     instance("params", params, Params)
@@ -116,9 +145,37 @@ class FixedArrayResult(ArrayResult):
 
 def fixed_orientation(params: Params, beta="self", rtol: float = 1e-6,
                       atol: float | None = None, method: str = "auto") -> FixedArrayResult:
-    """A fixed-orientation array at ``params.theta0`` (Figs. 9-11); see ``orientation_sweep``.
+    """A fixed-orientation array at ``params.theta0`` (Figs. 9-11).
 
-    ``params.beta`` must be 1 or equal ``beta`` (the array's load factor is ``beta``).
+    Every support of the array shares ``params.theta0``, so one trajectory is the array.
+
+    Parameters
+    ----------
+    params : Params
+        The support, load and orientation; ``params.beta`` must be 1 or equal ``beta``
+        (the array's load factor is ``beta``).
+    beta : "self" or float, default "self"
+        ``"self"`` solves the self-consistent load factor beta = L0/tau_out(beta); a number
+        fixes it (1 = no correction).
+    rtol, atol, method
+        Solver settings of the contact, as in ``simulate_support``.
+
+    Returns
+    -------
+    FixedArrayResult
+        F_T,x/(mu0 F_N), F_T,y/(mu0 F_N), D_y/D_x, N_c/N_c0 = tau_out/L0, the work split,
+        Delta theta_rms, Delta r_rms and beta.
+
+    See Also
+    --------
+    orientation_sweep : many orientations in one call.
+
+    Examples
+    --------
+    >>> from model import REGIMES, fixed_orientation
+    >>> array = fixed_orientation(REGIMES["slider"].replace(theta0=1.0))
+    >>> round(array.FTx_over_mu0FN, 3), round(array.Dy_over_Dx, 3), round(array.beta, 3)
+    (0.945, 0.203, 0.228)
     """
     instance("params", params, Params)
     check_array_params(params, "fixed_orientation", load_factor("beta", beta), uses_theta0=True)

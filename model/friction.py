@@ -25,14 +25,54 @@ def _consts(params: Params | None):
 
 
 def mu(v, params: Params | None = None):
-    """Friction coefficient mu(v) of Eq. (4) for relative speed v >= 0 (in V0)."""
+    """Friction coefficient mu(v) of Eq. (4).
+
+    Parameters
+    ----------
+    v : float or array_like
+        Relative speed of slab and support, v >= 0, in V0 (the slab speed).
+    params : Params, optional
+        Its friction constants mu_s, A, B, zeta; the defaults of ``Params`` if omitted.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        mu(v) = mu_s sin(A atan(zeta v - B (zeta v - atan(zeta v)))), dimensionless,
+        shaped as ``v``.
+
+    Examples
+    --------
+    >>> from model import mu
+    >>> mu([0.0, 0.1, 1.0]).round(4)
+    array([0.    , 1.1858, 1.0082])
+    """
     mu_s, A, B, zeta = _consts(params)
     z = zeta * np.asarray(v, dtype=float)
     return mu_s * np.sin(A * np.arctan(z - B * (z - np.arctan(z))))
 
 
 def mu0(params: Params | None = None) -> float:
-    """Rigid-contact friction coefficient mu0 = mu(1) (the slab speed), ~1.0085."""
+    """Rigid-contact friction coefficient mu0 = mu(1), at the slab speed.
+
+    Every friction result of an array is quoted over mu0 F_N: 1 is the friction of a rigid
+    surface, below 1 a reduction.
+
+    Parameters
+    ----------
+    params : Params, optional
+        Its friction constants; the defaults of ``Params`` (mu0 = 1.00824) if omitted.
+
+    Returns
+    -------
+    float
+        mu(1), dimensionless.
+
+    Examples
+    --------
+    >>> from model import mu0
+    >>> round(mu0(), 5)
+    1.00824
+    """
     return float(mu(1.0, params))
 
 
@@ -49,8 +89,27 @@ def series_coefficients(A: float, B: float):
 def mu_over_s(s, params: Params | None = None):
     """mu(s)/s, smooth and finite through s = 0 (limit mu_s A zeta).
 
-    The friction force is F_f = -f_N (mu(s)/s) v_R with s = |v_R|; writing it this
-    way keeps it smooth where the relative velocity vanishes.
+    The friction force is F_f = -f_N (mu(s)/s) v_R with s = ``abs(v_R)``; writing it this
+    way keeps it smooth where the relative velocity vanishes. Below zeta s = 1e-3 the closed
+    form is replaced by its Taylor series.
+
+    Parameters
+    ----------
+    s : float or array_like
+        Relative speed, s >= 0, in V0.
+    params : Params, optional
+        Its friction constants; the defaults of ``Params`` if omitted.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        mu(s)/s, in 1/V0, shaped as ``s``.
+
+    Examples
+    --------
+    >>> from model import mu_over_s
+    >>> mu_over_s([0.0, 1e-5, 1.0]).round(4)   # mu_s A zeta = 18.72 at s = 0
+    array([18.72  , 18.72  ,  1.0082])
     """
     mu_s, A, B, zeta = _consts(params)
     s = np.asarray(s, dtype=float)

@@ -26,13 +26,19 @@ RTOL_CHOICES = (1e-4, 1e-5, 1e-6, 1e-7, 1e-8)
 class SolverOptions:
     """How to integrate one contact.
 
-    rtol, atol : local error tolerances (per step, RMS norm over the motion and tau; the
+    Parameters
+    ----------
+    rtol, atol : float
+        Local error tolerances (per step, RMS norm over the motion and tau; the
         quadratures ride along and the energy residual checks them).
         ``atol=None`` means ``rtol / 100``.
-    method : one of ``METHODS``.
-    max_steps : step budget (accepted + rejected); beyond it the run stops with
+    method : str
+        One of ``METHODS``.
+    max_steps : int
+        Step budget (accepted + rejected); beyond it the run stops with
         ``success=False`` instead of hanging.
-    tau_max : time budget in tau; a contact still running then is reported as not
+    tau_max : float
+        Time budget in tau; a contact still running then is reported as not
         ended (``success=False``).
     """
 

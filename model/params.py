@@ -48,21 +48,50 @@ def _check(name: str, value) -> float:
 class Params:
     """One support in contact with the sliding slab (dimensionless, Eqs. 3-5).
 
+    Frozen, hashable and validated: a value outside the model's range raises
+    ``ValueError`` naming the field.
+
     Parameters
     ----------
-    k_r, k_theta : radial and torsional stiffness (k~_r, k~_theta of Eq. 5).
-    F_N : normal load on the slab per support at rest (F~_N); each support carries
-        f_N = beta * F_N.
-    theta0 : rest orientation of the support [rad], measured from the sliding
-        direction +x (used by ``simulate_support`` and ``fixed_orientation``; arrays over
-        theta0 take their orientations as an argument and refuse another theta0 here).
-    beta : N_c0 / N_c, the load correction for supports dragged beyond L0 (1 = no
+    k_r, k_theta : float
+        Radial and torsional stiffness (k~_r, k~_theta of Eq. 5), in m V0^2 / r0^2 and
+        m V0^2; the paper's map spans [0.01, 3] for both.
+    F_N : float, default 1
+        Normal load on the slab per support at rest (F~_N), in m V0^2 / r0; each support
+        carries f_N = beta * F_N.
+    theta0 : float, default pi/2
+        Rest orientation of the support [rad], measured from the sliding direction +x
+        (used by ``simulate_support`` and ``fixed_orientation``; arrays over theta0 take
+        their orientations as an argument and refuse another theta0 here).
+    beta : float, default 1
+        N_c0 / N_c, the load correction for supports dragged beyond L0 (1 = no
         correction). One support uses it; an array's load factor is the ``beta``
         argument of the array function ("self" solves it), which refuses a different
         value here rather than ignoring it (``check_array_params``).
-    mu_s, A, B, zeta : friction law, Eq. (4), with zeta = V0/V_s.
-    lam : range of the repulsion phi(r) = exp(-r/lam) / (2 lam), Eq. (3).
-    L0 : slab length; a contact ends when the slab has slid L0 over the support (Eq. 9).
+    mu_s, A, B, zeta : float, default 1.3, 1.44, -20, 10
+        Friction law, Eq. (4), with zeta = V0/V_s (dimensionless).
+    lam : float, default 0.05
+        Range of the repulsion phi(r) = exp(-r/lam) / (2 lam), Eq. (3), in r0.
+    L0 : float, default 10
+        Slab length in r0; a contact ends when the slab has slid L0 over the support
+        (Eq. 9).
+
+    See Also
+    --------
+    REGIMES : the four regimes of the paper.
+    simulate_support : one contact of this support.
+
+    Examples
+    --------
+    >>> from model import Params, REGIMES
+    >>> Params(k_r=3, k_theta=0.01) == REGIMES["pendulum"]
+    True
+    >>> Params(k_r=3, k_theta=0.01).replace(F_N=2.0).f_N
+    2.0
+    >>> Params(k_r=-1, k_theta=0.01)
+    Traceback (most recent call last):
+    ...
+    ValueError: k_r=-1 is invalid: radial stiffness k_r must be finite and in (0, 1e+06]
     """
 
     k_r: float

@@ -26,21 +26,55 @@ def simulate_support(params: Params, rtol: float = 1e-6, atol: float | None = No
                      tau_max: float = 1e5) -> SupportResult:
     """Integrate one contact of a support with the slab, from rest until exit (Eq. 9).
 
+    The motion (Eqs. 5-6) and the quadratures of the slab work, the dissipations and the
+    fluctuations (Eqs. 8, 12, 13) are integrated under one error control, from the rest
+    position until the slab has slid L0 over the support.
+
     Parameters
     ----------
-    params : the support and load (``Params``).
-    rtol, atol : local error tolerances (``atol=None`` means rtol/100).
-    method : ``"auto"`` (default: explicit Dormand-Prince 8(5,3), DOP853, switching to the
-        L-stable Rosenbrock Rodas4 where stiffness is detected), ``"explicit"``,
-        ``"implicit"`` or ``"reference"`` (scipy DOP853, slow).
-    samples : number of uniformly spaced points of the time histories to return
-        in ``result.series`` (0: none, the fastest).
-    max_steps, tau_max : budgets; when one runs out the result has ``success=False``.
+    params : Params
+        The support and load.
+    rtol : float, default 1e-6
+        Local relative error tolerance.
+    atol : float, optional
+        Local absolute error tolerance; ``None`` means ``rtol / 100``.
+    method : {"auto", "explicit", "implicit", "reference"}, default "auto"
+        ``"auto"``: the explicit Dormand-Prince pair chosen by rtol (DOP853 at
+        rtol <= 1e-6, 5(4) above), switching to the L-stable Rosenbrock Rodas4 where
+        stiffness is detected; ``"explicit"``, ``"implicit"`` (Rodas4) or ``"reference"``
+        (scipy's DOP853, slow). See the Solvers page of the documentation.
+    samples : int, default 0
+        Number of uniformly spaced points of the time histories to return in
+        ``result.series`` (0: none, the fastest).
+    max_steps : int, default 1_000_000
+        Step budget (accepted and rejected steps).
+    tau_max : float, default 1e5
+        Time budget in tau. When a budget runs out the result has ``success=False``.
 
     Returns
     -------
-    SupportResult; call ``.check()`` to raise ``IntegrationError`` on failure.
-    Results are cached (LRU) by parameters and settings; arrays are read-only.
+    SupportResult
+        Contact duration, mean friction over f_N, energies in m V0^2 and the energy
+        residual; call ``.check()`` to raise ``IntegrationError`` on failure. Results are
+        cached (LRU) by parameters and settings; their arrays are read-only.
+
+    See Also
+    --------
+    fixed_orientation : the array in which every support shares this orientation.
+
+    Examples
+    --------
+    >>> from model import REGIMES, simulate_support
+    >>> result = simulate_support(REGIMES["pendulum"])
+    >>> result.success, round(result.t_out, 3)      # contact duration tau_out (Eq. 9)
+    (True, 11.122)
+    >>> result.F_mean.round(3)                      # mean friction over f_N (Eq. 8)
+    array([0.951, 0.13 ])
+    >>> parts = result.D_x + result.D_y + result.U_el + result.K
+    >>> abs(result.W - parts) < 1e-6                # energy balance, Eq. (12)
+    True
+    >>> simulate_support(REGIMES["pendulum"], samples=50).series.tau.shape
+    (50,)
     """
     instance("params", params, Params)
     samples = whole("samples", samples, 0, 10**6)

@@ -10,9 +10,8 @@ Every point of the uniform-array sweeps is one independent ``uniform_array`` cal
 in the on-disk cache (``model.cache``: the user's cache directory, or
 ``$MICROPILLAR_CACHE_DIR``) so that no point is computed twice. The points run
 serially (``workers=1``), on a local process pool (``workers > 1``) or on a
-dask.distributed cluster (``scheduler``), with identical results. ``progress(done,
-total)`` is called after each point; setting the ``cancel`` event stops the sweep,
-which then raises ``SweepCancelled``.
+dask.distributed cluster (``scheduler``), with identical results; ``progress(done, total)``
+is called after each point, and setting the ``cancel`` event raises ``SweepCancelled``.
 """
 from __future__ import annotations
 
@@ -85,14 +84,27 @@ def regime_map(k_r=None, k_theta=None, n: int = 8, F_N: float = 1.0, tol: float 
                coarse=None) -> SweepResult:
     """Fig. 5a/b: uniform arrays at every (k_r, k_theta) pair (k_r outer, k_theta inner).
 
-    Both axes default to ``n`` log-spaced values on [0.01, 3]. Columns: k_r, k_theta, the
-    paper (Eq. 10) and duration-weighted F_T,x/(mu0 F_N), D_y/D_x, N_c/N_c0, beta, the
-    quadrature error of F_T,x/(mu0 F_N), failed and pivot-passing members, success.
+    Columns: k_r, k_theta, the paper (Eq. 10) and duration-weighted F_T,x/(mu0 F_N),
+    D_y/D_x, N_c/N_c0, beta, the quadrature error of F_T,x/(mu0 F_N), failed and
+    pivot-passing members, success. On grids larger than 8 x 8 an 8 x 8 subgrid (ends
+    included) is computed first and ``coarse(SweepResult)`` called with it. Along each
+    k_theta row one point's beta starts the next (continuation; within ``tol`` of
+    independent points).
 
-    Coarse to fine: on grids larger than 8 x 8 an 8 x 8 subgrid (both ends included)
-    is computed first and ``coarse(SweepResult)`` is called with it, then the rest.
-    Along each k_theta row the self-consistent beta of one point starts the next
-    (continuation); the results agree with independent points to within ``tol``.
+    Parameters
+    ----------
+    k_r, k_theta, n, F_N
+        The axes (default ``n`` = 8 log-spaced values on [0.01, 3]); the load (default 1).
+    tol, beta, rtol, atol, method, max_intervals, progress, cancel, workers, scheduler
+        As in ``uniform_array``; ``progress(done, total)``, ``cancel`` a threading.Event
+        (``SweepCancelled``), ``workers`` local processes, ``scheduler`` a Dask Client.
+
+    Examples
+    --------
+    >>> from model import regime_map
+    >>> table = regime_map(n=2, tol=1e-2)   # the corners of the paper's map
+    >>> table.columns["FTx_over_mu0FN"].round(3)
+    array([0.821, 0.911, 0.945, 0.999])
     """
     n = _count(n)
     k_r, k_theta = (_grid(name, _log_axis(n) if g is None else g)
@@ -109,8 +121,19 @@ def load_sweep(regimes=("pendulum", "slider", "stiff", "soft"), F_N=None, n: int
                scheduler=None) -> SweepResult:
     """Fig. 6: uniform arrays of each regime against the load F_N (regime outer).
 
-    F_N defaults to ``n`` log-spaced values on [0.1, 10]; increasing F_N lowers
-    F_T,x/(mu0 F_N) in every regime.
+    Parameters
+    ----------
+    regimes, F_N : str or sequence of str, array_like
+        Names in ``REGIMES`` (all four by default); loads (``n`` log-spaced on [0.1, 10]).
+    tol, beta, rtol, atol, method, max_intervals, progress, cancel, workers, scheduler
+        As in ``uniform_array``; ``progress(done, total)``, ``cancel`` a threading.Event
+        (``SweepCancelled``), ``workers`` local processes, ``scheduler`` a Dask Client.
+
+    Examples
+    --------
+    >>> from model import load_sweep
+    >>> load_sweep("soft", F_N=[0.1, 10], tol=1e-2).columns["FTx_over_mu0FN"].round(3)
+    array([1.001, 0.686])
     """
     n = _count(n)
     regimes = [regimes] if isinstance(regimes, str) else list(regimes)
@@ -133,6 +156,21 @@ def stiffness_sweep(k_r=None, k_theta=(0.01, 0.03, 0.1, 0.3, 1, 3), n: int = 8,
 
     One curve per k_theta (k_theta outer, k_r inner); k_r defaults to ``n`` log-spaced
     values on [0.01, 3]. The split columns are ratios of ensemble sums (D_x/W, ...).
+
+    Parameters
+    ----------
+    k_r, k_theta : array_like
+        Radial stiffnesses (``n`` log-spaced on [0.01, 3] by default) and one curve per
+        torsional stiffness.
+    tol, beta, rtol, atol, method, max_intervals, progress, cancel, workers, scheduler
+        As in ``uniform_array``; ``progress(done, total)``, ``cancel`` a threading.Event
+        (``SweepCancelled``), ``workers`` local processes, ``scheduler`` a Dask Client.
+
+    Examples
+    --------
+    >>> from model import stiffness_sweep
+    >>> stiffness_sweep(k_r=[0.01, 3], k_theta=[3], tol=1e-2).columns["Nc_over_Nc0"].round(2)
+    array([3.02, 1.04])
     """
     n = _count(n)
     k_r = _grid("k_r", _log_axis(n) if k_r is None else k_r)
@@ -146,10 +184,24 @@ def orientation_table(params, theta0=None, n: int = 37, beta="self", rtol: float
                       atol=None, method="auto", progress=None, cancel=None) -> SweepResult:
     """Figs. 10f, 11: fixed-orientation arrays for every theta0 (one batched call).
 
-    ``params`` is a ``Params`` or a regime name; theta0 defaults to the midpoints of
-    ``n`` equal cells of [0, pi]. Columns: theta0, F_T,x and F_T,y over mu0 F_N, D_y/D_x, N_c/N_c0,
-    dtheta_rms, dr_rms, beta, pivot_approach, the relative energy residual
-    |W - (D_x + D_y + U_el + K)|/W (the integration error), success.
+    Columns: theta0, F_T,x and F_T,y over mu0 F_N, D_y/D_x, N_c/N_c0, dtheta_rms, dr_rms,
+    beta, pivot_approach, the relative energy residual abs(W - (D_x + D_y + U_el + K))/W
+    (the integration error), success.
+
+    Parameters
+    ----------
+    params : Params or str
+        The springs and load, or a regime name.
+    theta0 : array_like, optional
+        Orientations [rad]; the midpoints of ``n`` equal cells of [0, pi] by default.
+    beta, rtol, atol, method
+        As in ``orientation_sweep``.
+
+    Examples
+    --------
+    >>> from model import orientation_table
+    >>> orientation_table("slider", n=4).columns["FTx_over_mu0FN"].round(3)
+    array([0.855, 0.833, 0.997, 0.965])
     """
     start = time.perf_counter()
     if isinstance(params, str):

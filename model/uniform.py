@@ -81,23 +81,56 @@ def uniform_array(params: Params, beta="self", tol: float = 1e-3, rtol: float | 
                   atol: float | None = None, method: str = "auto", max_intervals: int = 256,
                   full_circle: bool = False, *, beta_guess=None,
                   guess_is_close: bool = False) -> UniformArrayResult:
-    """Uniform-orientation array for the springs and load of ``params``.
+    """Uniform-orientation array for the springs and load of ``params`` (Figs. 5, 6, 8).
 
-    The array covers every theta0, so ``params.theta0`` must be left at its default; its
-    load factor is the ``beta`` argument, so ``params.beta`` must be 1 or equal ``beta``
-    (``ValueError`` otherwise: nothing in ``params`` is silently ignored).
+    theta0 uniform on [0, 2 pi): the average over theta0 is an adaptive Gauss-Kronrod
+    (7, 15) quadrature on [0, pi] (mirror symmetry makes F_x even and F_y odd, so
+    F_T,y = 0).
 
-    ``tol`` bounds the quadrature error estimates of F_T,x/(mu0 F_N) and N_c/N_c0;
-    intervals of theta0 are bisected where the integrand is rough until it is met.
-    ``beta="self"`` solves beta = L0/<tau_out>(beta); a number fixes it.
-    ``rtol=None`` integrates each member at tol/100 (at most 1e-5), so the integration
-    error stays well below the quadrature tolerance.
-    ``beta_guess`` (a number, or (beta, slope of G) from ``UniformArrayResult.stats``
-    of a neighbouring array) starts the self-consistent solve near its root
-    (continuation across a sweep); the result is the same to within the tolerance.
-    ``guess_is_close`` starts the quadrature at ``beta_guess`` itself, without the
-    one-interval solve (for a guess extrapolated from two neighbours, closer to the root
-    than that solve gets).
+    Parameters
+    ----------
+    params : Params
+        The springs, load and friction law. The array covers every theta0, so
+        ``params.theta0`` must be left at its default; its load factor is the ``beta``
+        argument, so ``params.beta`` must be 1 or equal ``beta`` (``ValueError``
+        otherwise: nothing in ``params`` is silently ignored).
+    beta : "self" or float, default "self"
+        ``"self"`` solves beta = L0/<tau_out>(beta); a number fixes it.
+    tol : float, default 1e-3
+        Bound on the quadrature error estimates of F_T,x/(mu0 F_N) and N_c/N_c0;
+        intervals of theta0 are bisected where the integrand is rough until it is met.
+    rtol : float, optional
+        ``None`` integrates each member at tol/100 (at most 1e-5), so the integration
+        error stays well below the quadrature tolerance.
+    atol, method
+        Solver settings of each member, as in ``simulate_support``.
+    max_intervals : int, default 256
+        Most intervals of theta0 the quadrature may bisect into.
+    full_circle : bool, default False
+        Integrate over [0, 2 pi) instead of [0, pi] (a check of the symmetry).
+    beta_guess : float or tuple, optional
+        A number, or (beta, slope of G) from ``UniformArrayResult.stats`` of a
+        neighbouring array: starts the self-consistent solve near its root (continuation
+        across a sweep); the result is the same to within the tolerance.
+    guess_is_close : bool, default False
+        Start the quadrature at ``beta_guess`` itself, without the one-interval solve (for
+        a guess extrapolated from two neighbours, closer to the root than that solve gets).
+
+    Returns
+    -------
+    UniformArrayResult
+        Both averages of F_T,x/(mu0 F_N) (the paper's Eq. 10 and the duration-weighted
+        one), D_y/D_x, N_c/N_c0, the work split, beta, and their error estimates
+        (``quadrature_error``, ``integration_error``).
+
+    Examples
+    --------
+    >>> from model import REGIMES, uniform_array
+    >>> array = uniform_array(REGIMES["stiff"], tol=1e-3)
+    >>> round(float(array.FTx_over_mu0FN), 4), float(array.FTy_over_mu0FN), array.success
+    (0.9987, 0.0, True)
+    >>> bool(array.quadrature_error["FTx_over_mu0FN"] < 1e-3)
+    True
     """
     instance("params", params, Params)
     tol = number("tol", tol, TOL, "quadrature tolerance tol")
