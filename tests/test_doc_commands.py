@@ -51,9 +51,13 @@ def commands() -> list[tuple[str, str]]:
 
 
 def _params():
+    """One case per distinct command (the README repeats a few of the docs' commands)."""
+    first = {}
+    for name, command in commands():
+        first.setdefault(command, name)
     return [pytest.param(command, id=f"{name}: {command[:60]}",
                          marks=[pytest.mark.slow] if command.startswith(SLOW) else [])
-            for name, command in commands()]
+            for command, name in first.items()]
 
 
 def test_the_docs_hold_the_commands_this_test_runs():
