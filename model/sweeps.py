@@ -126,8 +126,7 @@ def load_sweep(regimes=("pendulum", "slider", "stiff", "soft"), F_N=None, n: int
     regimes, F_N : str or sequence of str, array_like
         Names in ``REGIMES`` (all four by default); loads (``n`` log-spaced on [0.1, 10]).
     tol, beta, rtol, atol, method, max_intervals, progress, cancel, workers, scheduler
-        As in ``uniform_array``; ``progress(done, total)``, ``cancel`` a threading.Event
-        (``SweepCancelled``), ``workers`` local processes, ``scheduler`` a Dask Client.
+        As in ``regime_map``.
 
     Examples
     --------
@@ -163,8 +162,7 @@ def stiffness_sweep(k_r=None, k_theta=(0.01, 0.03, 0.1, 0.3, 1, 3), n: int = 8,
         Radial stiffnesses (``n`` log-spaced on [0.01, 3] by default) and one curve per
         torsional stiffness.
     tol, beta, rtol, atol, method, max_intervals, progress, cancel, workers, scheduler
-        As in ``uniform_array``; ``progress(done, total)``, ``cancel`` a threading.Event
-        (``SweepCancelled``), ``workers`` local processes, ``scheduler`` a Dask Client.
+        As in ``regime_map``.
 
     Examples
     --------
