@@ -22,7 +22,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import optimize, stats
+from scipy import optimize
 
 from .friction import law
 from .friction_curve import N_COEFFICIENTS, FrictionCurve
@@ -164,6 +164,8 @@ def fit_friction(curve: FrictionCurve) -> FrictionFit:
 
 
 def _result(res, curve: FrictionCurve, lo, hi, nfev: int) -> FrictionFit:
+    from scipy import stats  # here: importing the package stays quick
+
     n, p = curve.n_points, res.x
     dof = n - N_COEFFICIENTS
     weighted = curve.mu_err is not None
@@ -239,6 +241,8 @@ def _flat(curve: FrictionCurve, rss: float) -> bool:
     """True when a constant mu is not rejected against the fit of Eq. (4) (residual sum
     of squares ``rss``) at the 5 % level: an F test, or with mu_err the chi-square
     difference."""
+    from scipy import stats
+
     dof = curve.n_points - N_COEFFICIENTS
     if dof <= 0:
         return False

@@ -21,10 +21,15 @@ from .friction import law
 from .params import DEFAULTS, RANGES
 from .validation import number
 
-__all__ = ["FrictionLaw", "COEFFICIENTS"]
+__all__ = ["FrictionLaw", "COEFFICIENTS", "zeta"]
 
 #: The coefficients of Eq. (4) in the order the fit and its files give them (V_s in m/s).
 COEFFICIENTS = ("mu_s", "A", "B", "V_s")
+
+
+def zeta(V0: float, V_s: float | None) -> float:
+    """zeta = V0/V_s of Eq. (4) (speeds in one unit); the model's default without V_s."""
+    return DEFAULTS["zeta"] if V_s is None else V0 / V_s
 
 
 def _speed(value) -> float:
@@ -59,10 +64,6 @@ class FrictionLaw:
         """The paper's coefficients with the default velocity scale."""
         return self == FrictionLaw()
 
-    def zeta(self, V0: float) -> float:
-        """zeta = V0/V_s for a sliding speed V0 (m/s); the model's default without V_s."""
-        return DEFAULTS["zeta"] if self.V_s is None else V0 / self.V_s
-
     def mu(self, v, V0: float | None = None):
         """mu at sliding speeds ``v`` (m/s), Eq. (4); ``V0`` is needed only without V_s."""
         if self.V_s is None:
@@ -73,6 +74,14 @@ class FrictionLaw:
         else:
             V_s = self.V_s
         return law(np.asarray(v, dtype=float) / V_s, self.mu_s, self.A, self.B)
+
+    def dimensionless(self, V0: float | None = None) -> dict:
+        """The law as ``Params`` fields mu_s, A, B and zeta = V0/V_s (``V0`` in m/s; not
+        needed without V_s): ``Params(k_r=..., k_theta=..., **law.dimensionless(V0))``."""
+        if self.V_s is not None and V0 is None:
+            raise ValueError(f"V0=None: zeta = V0/V_s needs the sliding speed V0 (m/s) of a "
+                             f"law with V_s = {self.V_s!r} m/s")
+        return {"mu_s": self.mu_s, "A": self.A, "B": self.B, "zeta": zeta(V0, self.V_s)}
 
     def design_fields(self) -> dict:
         """The law as ``PillarDesign`` inputs (``design.replace(**law.design_fields())``)."""
@@ -92,6 +101,9 @@ class FrictionLaw:
         if not isinstance(record, dict):
             raise ValueError(f"{source}: expected a JSON object with keys "
                              f"{', '.join(COEFFICIENTS)}, not {type(record).__name__}")
+        if record.get("success") is False:
+            raise ValueError(f"{source}: the fit it holds did not converge "
+                             f"({record.get('message', 'no message')}); fit again")
         values = {}
         for name in COEFFICIENTS:
             if name not in record:
