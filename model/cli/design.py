@@ -139,7 +139,7 @@ _PILLAR_HELP = {"D": "pillar diameter, e.g. '5 um'", "h": "pillar height, e.g. '
 
 
 def add_pillar_command(commands) -> None:
-    from . import orientations
+    from . import orientations, speeds
 
     p = commands.add_parser(
         "pillar", help="a real pillar array in physical units: its point on the map",
@@ -171,6 +171,7 @@ def add_pillar_command(commands) -> None:
                            help="time budget of the evaluation in seconds (default none); "
                                 "running out prints the result with success false, its "
                                 "outcome and remedy, and exits with 1")
+    speeds.add_arguments(run_group)
     orientations.add_arguments(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=run_pillar)
@@ -218,17 +219,33 @@ def _friction_fields(path: str, given: dict) -> dict:
         raise UsageError("--friction", str(error)) from None
 
 
-def run_pillar(args) -> int:
-    """``pillar``: where a real design sits; with --evaluate its array in physical units."""
+def _distribution(args):
+    """The orientation distribution of --orientation and its flags (None: uniform)."""
     from ..distributions import Fixed
-    from ..design_point import evaluate, model_point, regime_intervals
     from . import orientations
 
-    if args.budget is not None and not args.evaluate:
-        raise UsageError("--budget", "only with --evaluate (the point itself costs no time)")
+    if args.orientation in orientations.ORIENTATIONS:
+        return orientations.distribution(args, args.orientation)
+    orientations.reject_foreign(args, args.orientation)
+    return Fixed(math.pi / 2 if args.theta0 is None else args.theta0) \
+        if args.orientation == "fixed" else None
+
+
+def run_pillar(args) -> int:
+    """``pillar``: where a real design sits; with --evaluate its array in physical units;
+    with --speeds its friction against sliding speed."""
+    from ..design_point import evaluate, model_point, regime_intervals
+    from . import speeds
+
+    if args.budget is not None and not (args.evaluate or args.speeds):
+        raise UsageError("--budget", "only with --evaluate or --speeds (the point itself "
+                                     "costs no time)")
     if args.budget is not None and not (math.isfinite(args.budget) and args.budget > 0):
         raise UsageError("--budget", f"{args.budget!r} must be a finite number of seconds > 0")
+    values = speeds.speeds(args)
     design = _pillar_design(args)
+    if values is not None:
+        return speeds.run(args, design, _distribution(args), values)
     record = {"design": design.to_dict(), "point": design.dimensionless(),
               "regime": design.regime(), "intervals": regime_intervals(design)}
     try:
@@ -240,12 +257,7 @@ def run_pillar(args) -> int:
             raise UsageError(None, str(error)) from None
     code = 0
     if args.evaluate:
-        if args.orientation in orientations.ORIENTATIONS:
-            dist = orientations.distribution(args, args.orientation)
-        else:
-            orientations.reject_foreign(args, args.orientation)
-            dist = Fixed(math.pi / 2 if args.theta0 is None else args.theta0) \
-                if args.orientation == "fixed" else None
+        dist = _distribution(args)
         try:
             result = evaluate(design, dist, beta=args.beta,
                               tol=1e-3 if args.tol is None else args.tol, budget=args.budget)
