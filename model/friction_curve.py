@@ -9,13 +9,15 @@ are ignored. Lines starting with ``#`` and blank lines are skipped. Every refusa
 """
 from __future__ import annotations
 
-import csv
 import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+
+from .files import read_user_text
+from .histogram_csv import data_rows, number_cell
 
 __all__ = ["FrictionCurve", "CurveFileError", "read_curve", "speed_factor", "N_COEFFICIENTS"]
 
@@ -126,17 +128,6 @@ def _header(cells, name: str, line: int, v_unit: str | None):
     return columns, factor
 
 
-def _number(text: str, column: str, name: str, line: int) -> float:
-    try:
-        x = float(text)
-    except ValueError:
-        raise CurveFileError(f"{name} line {line}: {text!r} in column {column} is not a "
-                             f"number") from None
-    if not math.isfinite(x):
-        raise CurveFileError(f"{name} line {line}: {column} = {text!r} is not a finite number")
-    return x
-
-
 def read_curve(path, v_unit: str | None = None) -> FrictionCurve:
     """The friction curve in ``path`` (speeds converted to m/s); ``CurveFileError`` naming
     the line for a file without a header, a cell that is not a finite number, a negative
@@ -144,14 +135,10 @@ def read_curve(path, v_unit: str | None = None) -> FrictionCurve:
     Eq. (4)."""
     name = Path(path).name
     try:
-        with open(path, encoding="utf-8-sig", newline="") as src:
-            lines = list(enumerate(src, start=1))
-    except OSError as error:
-        raise CurveFileError(f"{path}: cannot read it ({error.strerror or error})") from None
-    except UnicodeDecodeError:
-        raise CurveFileError(f"{name}: not a text file (expected UTF-8 CSV)") from None
-    rows = [(i, cells) for i, text in lines if text.strip() and not text.lstrip().startswith("#")
-            for cells in csv.reader([text])]
+        text = read_user_text(path, "CSV")
+    except ValueError as error:
+        raise CurveFileError(str(error)) from None
+    rows = data_rows(text)
     if not rows:
         raise CurveFileError(f"{name}: no header and no data; the first row must name the "
                              f"columns, such as 'v [mm/s],mu'")
@@ -166,8 +153,11 @@ def read_curve(path, v_unit: str | None = None) -> FrictionCurve:
         if len(cells) < width:
             raise CurveFileError(f"{name} line {line}: {len(cells)} cells, the header names "
                                  f"{width}")
-        for key, j in columns.items():
-            data[key].append(_number(cells[j], key, name, line))
+        try:
+            for key, j in columns.items():
+                data[key].append(number_cell(name, line, cells[j]))
+        except ValueError as error:
+            raise CurveFileError(str(error)) from None
         numbers.append(line)
     v = np.array(data["v"], dtype=float)
     mu = np.array(data["mu"], dtype=float)

@@ -128,13 +128,9 @@ class FrictionLaw:
     @classmethod
     def from_json(cls, path) -> "FrictionLaw":
         """The law in a JSON file (``micropillar friction fit ... --out fit.json``)."""
-        name = Path(path).name
-        try:
-            text = Path(path).read_text(encoding="utf-8")
-        except OSError as error:
-            raise ValueError(f"{path}: cannot read it ({error.strerror or error})") from None
-        except UnicodeDecodeError:
-            raise ValueError(f"{name}: not a text file (expected JSON)") from None
+        from .files import read_user_text
+
+        name, text = Path(path).name, read_user_text(path, "JSON")
         try:
             record = json.loads(text)
         except ValueError as error:
