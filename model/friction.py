@@ -10,7 +10,7 @@ import numpy as np
 
 from .params import DEFAULTS, Params
 
-__all__ = ["mu", "mu0", "mu_over_s", "series_coefficients"]
+__all__ = ["mu", "mu0", "mu_over_s", "series_coefficients", "law"]
 
 # Below this zeta*s the closed form of mu(s)/s is replaced by its Taylor series:
 # the series is exact to rounding there and has no 0/0 at s = 0.
@@ -22,6 +22,13 @@ def _consts(params: Params | None):
         d = DEFAULTS
         return d["mu_s"], d["A"], d["B"], d["zeta"]
     return params.mu_s, params.A, params.B, params.zeta
+
+
+def law(z, mu_s: float, A: float, B: float):
+    """Eq. (4) of the speed ratio z = v/V_s (= zeta v in units of V0):
+    mu_s sin(A atan(z - B (z - atan(z)))). The one place the formula is written."""
+    z = np.asarray(z, dtype=float)
+    return mu_s * np.sin(A * np.arctan(z - B * (z - np.arctan(z))))
 
 
 def mu(v, params: Params | None = None):
@@ -47,8 +54,7 @@ def mu(v, params: Params | None = None):
     array([0.    , 1.1858, 1.0082])
     """
     mu_s, A, B, zeta = _consts(params)
-    z = zeta * np.asarray(v, dtype=float)
-    return mu_s * np.sin(A * np.arctan(z - B * (z - np.arctan(z))))
+    return law(zeta * np.asarray(v, dtype=float), mu_s, A, B)
 
 
 def mu0(params: Params | None = None) -> float:

@@ -18,15 +18,16 @@ import math
 
 import numpy as np
 
-__all__ = ["HEADERS", "parse_histogram"]
+__all__ = ["HEADERS", "parse_histogram", "data_rows", "number_cell"]
 
 #: The accepted header rows.
 HEADERS = (("theta0_deg", "weight"), ("lower_deg", "upper_deg", "weight"))
 _EXPECTED = "theta0_deg,weight or lower_deg,upper_deg,weight"
 
 
-def _rows(text: str) -> list[tuple[int, list[str]]]:
-    """(line number, cells) of the non-empty, non-comment lines."""
+def data_rows(text: str) -> list[tuple[int, list[str]]]:
+    """(line number, cells) of the non-empty, non-comment lines of a CSV text (also read
+    by ``model.friction_curve``)."""
     out = []
     for number, row in enumerate(csv.reader(text.splitlines()), start=1):
         if row and any(c.strip() for c in row) and not row[0].lstrip().startswith("#"):
@@ -34,7 +35,7 @@ def _rows(text: str) -> list[tuple[int, list[str]]]:
     return out
 
 
-def _cell(source: str, line: int, text: str) -> float:
+def number_cell(source: str, line: int, text: str) -> float:
     try:
         value = float(text)
     except ValueError:
@@ -51,7 +52,7 @@ def parse_histogram(text: str, source: str = "the histogram") -> tuple[np.ndarra
 
     ``source`` names the file in the errors (e.g. ``"histogram file 'h.csv'"``).
     """
-    rows = _rows(text)
+    rows = data_rows(text)
     if len(rows) < 2:
         raise ValueError(f"{source} is empty: it needs a header row ({_EXPECTED}) and one "
                          f"row per bin")
@@ -63,7 +64,7 @@ def parse_histogram(text: str, source: str = "the histogram") -> tuple[np.ndarra
         if len(row) != len(header):
             raise ValueError(f"{source}: line {line} has {len(row)} columns; every row must "
                              f"have {len(header)} like its header {','.join(header)}")
-        table.append([_cell(source, line, x) for x in row])
+        table.append([number_cell(source, line, x) for x in row])
     table = np.array(table, dtype=float)
     w = table[:, -1]
     negative = np.flatnonzero(w < 0)

@@ -28,6 +28,7 @@ from tokenize import TokenError
 
 import pint
 
+from .friction_law import FrictionLaw, zeta
 from .params import DEFAULTS, RANGES, Params
 from .regimes import regime_of
 
@@ -62,9 +63,9 @@ _FIELDS = {
     "F_N": ("[force]", "mN", "1 mN", 0.0, True),
     "V0": ("[length] / [time]", "cm/s", "1 cm/s", 0.0, True),
     "V_s": ("[length] / [time]", "cm/s", "0.1 cm/s", 0.0, False),
-    "mu_s": ("", "", "1.3", 0.0, False),
-    "A": ("", "", "1.44", 0.0, False),
-    "B": ("", "", "-20", -math.inf, False),
+    "mu_s": ("", "", f"{DEFAULTS['mu_s']:g}", 0.0, False),
+    "A": ("", "", f"{DEFAULTS['A']:g}", 0.0, False),
+    "B": ("", "", f"{DEFAULTS['B']:g}", -math.inf, False),
     "prefactor_r": ("", "", "1", 0.0, False),
     "prefactor_theta": ("", "", "1", 0.0, False),
 }
@@ -168,7 +169,8 @@ class PillarDesign:
     """A micropillar array in physical units (SI floats after parsing; see module doc).
 
     Give ``G`` or ``nu`` (not both). ``V_s`` is the friction law's velocity scale (Eq. 4,
-    zeta = V0/V_s); when omitted zeta takes the model default 10. ``F_N`` is the total
+    zeta = V0/V_s); when omitted zeta takes the model default 10. ``mu_s``, ``A``, ``B``
+    and ``V_s`` are the friction law (``friction_law``; ``with_friction`` sets a fitted one). ``F_N`` is the total
     normal load on the slab, shared by the N_c0 pillars it covers.
     """
 
@@ -262,7 +264,7 @@ class PillarDesign:
         return {"k_r": self.r0 ** 2 * self.k_r / s.energy,
                 "k_theta": self.k_theta / s.energy,
                 "F_N": self.r0 * self.F_N / (self.N_c0 * s.energy),
-                "zeta": DEFAULTS["zeta"] if self.V_s is None else self.V0 / self.V_s,
+                "zeta": zeta(self.V0, self.V_s),
                 "L0": self.L_x / self.r0}
 
     def params(self, **changes) -> Params:
@@ -270,6 +272,15 @@ class PillarDesign:
         d = self.dimensionless()
         return Params(k_r=d["k_r"], k_theta=d["k_theta"], F_N=d["F_N"], zeta=d["zeta"],
                       L0=d["L0"], mu_s=self.mu_s, A=self.A, B=self.B, **changes)
+
+    @property
+    def friction_law(self) -> FrictionLaw:
+        """The design's friction law, Eq. (4) (``model.friction_law.FrictionLaw``)."""
+        return FrictionLaw(mu_s=self.mu_s, A=self.A, B=self.B, V_s=self.V_s)
+
+    def with_friction(self, law) -> "PillarDesign":
+        """A copy with the friction law ``law`` (a ``FrictionLaw``, e.g. a fit's ``.law``)."""
+        return self.replace(**law.design_fields())
 
     def regime(self) -> str:
         d = self.dimensionless()

@@ -131,3 +131,15 @@ def test_busy_core_runs_the_command_beside_a_spinning_process():
     assert "1 core(s) kept busy" in done.stderr
     left = subprocess.run(["pgrep", "-f", "deadline = time.monotonic"], capture_output=True)
     assert left.returncode == 1, "a spinner outlived the command"
+
+
+@pytest.mark.slow
+def test_friction_fit_benchmark_quick(tmp_path):
+    _run("bench_friction_fit.py", tmp_path)
+    report = (tmp_path / "friction_fit.md").read_text()
+    assert "| fit_friction |" in report and "| curve_fit |" in report
+    data = json.loads((tmp_path / "friction_fit.json").read_text())
+    for r in data["fit"].values():
+        s = r["seconds"]
+        assert _spread_ok(s["min"], s["median"], s["max"]) and r["converged"] == r["runs"]
+    assert data["speeds"]["n"] == 5 and data["speeds"]["success"]

@@ -19,8 +19,10 @@ PHASES = (Phase.explicit, Phase.reuse, Phase.generate, Phase.shrink)
 FUZZ = settings(max_examples=300, deadline=30_000, database=None, phases=PHASES,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
 # design and pillar are fuzzed, with budgets, in test_cli_design.py; pack (the app's
-# offline explorer, a 2 MB file per run) has its usage errors tested in test_offline_pack.py.
-COMMANDS = {"support", "array", "sweep", "reproduce", "warmup", "design", "pillar", "pack"}
+# offline explorer, a 2 MB file per run) has its usage errors tested in test_offline_pack.py;
+# friction (reads a file) has its bad files tested in test_friction_fit.py.
+COMMANDS = {"support", "array", "sweep", "reproduce", "warmup", "design", "pillar", "pack",
+            "friction"}
 MISSING_DIR = "/nonexistent-micropillar-dir/out.csv"
 
 SUPPORT_FLAGS = ["--k-r", "--k-theta", "--F-N", "--theta0", "--beta", "--rtol", "--atol",

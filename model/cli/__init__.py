@@ -10,6 +10,8 @@ array
     contact count and work split, with both averages of the uniform array.
 sweep
     A parameter sweep behind one of the paper's figures, written to a CSV file.
+friction
+    ``friction fit FILE.csv``: fit the friction law of Eq. (4) to a measured curve.
 reproduce
     Every figure's data of the paper as CSV, and its findings checked in a report
     (``report.md``, ``index.html``); ``python -m app.reproduce`` adds the pictures.
@@ -38,7 +40,7 @@ from ..quantities import describe
 from ..support import simulate_support
 from importlib.metadata import entry_points
 
-from . import array, design, reproduce, snippet, sweep
+from . import array, design, friction, reproduce, snippet, sweep
 from ._common import (FIELD_FLAGS, PROG, CommandParser, UsageError, add_stiffness,
                       as_usage_error, check_memory, jsonable, real, stiffness, table, whole)
 
@@ -211,6 +213,7 @@ def build_parser() -> CommandParser:
     _add_support(commands)
     array.add_command(commands)
     design.add_command(commands)
+    friction.add_command(commands)
     sweep.add_command(commands)
     reproduce.add_command(commands)
     for command in entry_points(group=COMMANDS_GROUP):  # commands of other packages (app's pack)
@@ -247,9 +250,10 @@ def _run(argv: list[str] | None) -> int:
         parser.print_help(sys.stderr)
         return 2
     try:
-        from .._kernel import announce_cold_start
+        if getattr(args, "kernel", True):  # commands that integrate nothing set kernel=False
+            from .._kernel import announce_cold_start
 
-        announce_cold_start(sys.stderr)
+            announce_cold_start(sys.stderr)
         return args.run(args)
     except UsageError as error:
         print(f"{PROG} {args.command}: error: {error}", file=sys.stderr)

@@ -17,7 +17,7 @@ import re
 
 from ..design import FAMILIES, OBJECTIVES, OptimisationCancelled, optimise
 from ..design_table import headline, rows as design_rows
-from ..params import Params
+from ..params import DEFAULTS, Params
 from .sweep import POINT_BYTES
 from ._common import (FIELD_FLAGS, UsageError, add_stiffness, beta_value, check_memory,
                       jsonable, real, stiffness, table, whole)
@@ -134,12 +134,12 @@ _PILLAR_HELP = {"D": "pillar diameter, e.g. '5 um'", "h": "pillar height, e.g. '
                 "L_y": "slab width", "F_N": "total normal load, e.g. '1 mN'",
                 "V0": "sliding speed, e.g. '1 cm/s'",
                 "V_s": "friction law's velocity scale (default: zeta = V0/V_s = 10)",
-                "mu_s": "friction law mu_s (default 1.3)", "A": "friction law A (default 1.44)",
-                "B": "friction law B (default -20)"}
+                **{name: f"friction law {name} (default {DEFAULTS[name]:g})"
+                   for name in ("mu_s", "A", "B")}}
 
 
 def add_pillar_command(commands) -> None:
-    from . import orientations
+    from . import orientations, speeds
 
     p = commands.add_parser(
         "pillar", help="a real pillar array in physical units: its point on the map",
@@ -150,6 +150,9 @@ def add_pillar_command(commands) -> None:
     g = p.add_argument_group("design (with units)")
     for flag, name in _PILLAR.items():
         g.add_argument(flag, dest=f"pillar_{name}", metavar="Q", help=_PILLAR_HELP[name])
+    g.add_argument("--friction", metavar="FILE.json",
+                   help="the friction law (mu_s, A, B, V_s in m/s) from a JSON file, such as "
+                        "the one 'friction fit --out' writes; instead of --mu-s/--A/--B/--V-s")
     g.add_argument("--prefactors", choices=("paper", "beam"), default="paper",
                    help="stiffness prefactors: paper (1, 1) or beam theory (3 pi/64, pi/32)")
     run_group = p.add_argument_group("evaluation")
@@ -168,6 +171,7 @@ def add_pillar_command(commands) -> None:
                            help="time budget of the evaluation in seconds (default none); "
                                 "running out prints the result with success false, its "
                                 "outcome and remedy, and exits with 1")
+    speeds.add_arguments(run_group)
     orientations.add_arguments(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=run_pillar)
@@ -183,6 +187,8 @@ def _pillar_design(args):
     if missing:
         raise UsageError(missing[0], "required")
     kwargs = {k: v for k, v in values.items() if v is not None}
+    if args.friction is not None:
+        kwargs.update(_friction_fields(args.friction, kwargs))
     if args.prefactors == "beam":
         kwargs.update(prefactor_r=BEAM_PREFACTORS["k_r"],
                       prefactor_theta=BEAM_PREFACTORS["k_theta"])
@@ -194,17 +200,52 @@ def _pillar_design(args):
         raise UsageError(flags.get(match.group(1)) if match else None, str(error)) from None
 
 
-def run_pillar(args) -> int:
-    """``pillar``: where a real design sits; with --evaluate its array in physical units."""
+#: The flags a friction-law file replaces.
+_LAW_FLAGS = ("--mu-s", "--A", "--B", "--V-s")
+
+
+def _friction_fields(path: str, given: dict) -> dict:
+    """The ``PillarDesign`` friction inputs from the JSON file ``path``; ``UsageError``
+    naming --friction for a file that cannot be read or a law flag given as well."""
+    from ..friction_law import FrictionLaw
+
+    both = [flag for flag in _LAW_FLAGS if _PILLAR[flag] in given]
+    if both:
+        raise UsageError("--friction", f"give the friction law as a file or as {both[0]}, "
+                                       f"not both")
+    try:
+        return FrictionLaw.from_json(path).design_fields()
+    except ValueError as error:
+        raise UsageError("--friction", str(error)) from None
+
+
+def _distribution(args):
+    """The orientation distribution of --orientation and its flags (None: uniform)."""
     from ..distributions import Fixed
-    from ..design_point import evaluate, model_point, regime_intervals
     from . import orientations
 
-    if args.budget is not None and not args.evaluate:
-        raise UsageError("--budget", "only with --evaluate (the point itself costs no time)")
+    if args.orientation in orientations.ORIENTATIONS:
+        return orientations.distribution(args, args.orientation)
+    orientations.reject_foreign(args, args.orientation)
+    return Fixed(math.pi / 2 if args.theta0 is None else args.theta0) \
+        if args.orientation == "fixed" else None
+
+
+def run_pillar(args) -> int:
+    """``pillar``: where a real design sits; with --evaluate its array in physical units;
+    with --speeds its friction against sliding speed."""
+    from ..design_point import evaluate, model_point, regime_intervals
+    from . import speeds
+
+    if args.budget is not None and not (args.evaluate or args.speeds):
+        raise UsageError("--budget", "only with --evaluate or --speeds (the point itself "
+                                     "costs no time)")
     if args.budget is not None and not (math.isfinite(args.budget) and args.budget > 0):
         raise UsageError("--budget", f"{args.budget!r} must be a finite number of seconds > 0")
+    values = speeds.speeds(args)
     design = _pillar_design(args)
+    if values is not None:
+        return speeds.run(args, design, _distribution(args), values)
     record = {"design": design.to_dict(), "point": design.dimensionless(),
               "regime": design.regime(), "intervals": regime_intervals(design)}
     try:
@@ -216,12 +257,7 @@ def run_pillar(args) -> int:
             raise UsageError(None, str(error)) from None
     code = 0
     if args.evaluate:
-        if args.orientation in orientations.ORIENTATIONS:
-            dist = orientations.distribution(args, args.orientation)
-        else:
-            orientations.reject_foreign(args, args.orientation)
-            dist = Fixed(math.pi / 2 if args.theta0 is None else args.theta0) \
-                if args.orientation == "fixed" else None
+        dist = _distribution(args)
         try:
             result = evaluate(design, dist, beta=args.beta,
                               tol=1e-3 if args.tol is None else args.tol, budget=args.budget)
@@ -238,12 +274,21 @@ def run_pillar(args) -> int:
     return code
 
 
+def _law_text(design: dict) -> str:
+    """mu_s, A, B (and V_s with its unit) of a design's ``to_dict``."""
+    text = ", ".join(f"{name} {design[name]:.4g}" for name in ("mu_s", "A", "B"))
+    if "V_s" in design:
+        text += f", V_s {design['V_s']:.4g} {design['units']['V_s']}"
+    return text
+
+
 def _pillar_summary(r: dict) -> str:
     p = r["point"]
     rows = [("k_r", p["k_r"], "k~_r = r0^2 k_r / (m V0^2)"),
             ("k_theta", p["k_theta"], "k~_theta = k_theta / (m V0^2)"),
             ("F_N", p["F_N"], "F~_N = r0 F_N / (N_c0 m V0^2)"),
             ("zeta", p["zeta"], "V0 / V_s"), ("L0", p["L0"], "L_x / r0"),
+            ("friction", _law_text(r["design"]), "friction law, Eq. (4)"),
             ("regime", r["regime"], "quadrant of the map"),
             ("status", r["status"], r["status_message"])]
     for regime, span in r["intervals"]["V0_m_per_s"].items():
