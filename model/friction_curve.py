@@ -129,10 +129,34 @@ def _header(cells, name: str, line: int, v_unit: str | None):
 
 
 def read_curve(path, v_unit: str | None = None) -> FrictionCurve:
-    """The friction curve in ``path`` (speeds converted to m/s); ``CurveFileError`` naming
+    r"""The friction curve in ``path`` (speeds converted to m/s); ``CurveFileError`` naming
     the line for a file without a header, a cell that is not a finite number, a negative
     speed, a ``mu_err`` that is not positive, or fewer points than the coefficients of
-    Eq. (4)."""
+    Eq. (4).
+
+    Parameters
+    ----------
+    path : str or Path
+        A CSV file with columns ``v`` and ``mu`` (optional ``mu_err``); the speed unit in
+        the header (``v [mm/s]``) or in ``v_unit``.
+    v_unit : str, optional
+        The unit of ``v`` when the header gives none, e.g. ``"mm/s"``.
+
+    Returns
+    -------
+    FrictionCurve
+        The points, speeds in m/s.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from model import read_curve
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "flat.csv"
+    >>> _ = path.write_text("v [mm/s],mu\n0.1,0.5\n1,1.0\n10,1.2\n100,1.25\n1000,1.27\n")
+    >>> curve = read_curve(path)
+    >>> float(curve.v[1]), len(curve.mu)
+    (0.001, 5)
+    """
     name = Path(path).name
     try:
         text = read_user_text(path, "CSV")

@@ -140,7 +140,28 @@ def _covariance(jac: np.ndarray):
 
 
 def fit_friction(curve: FrictionCurve) -> FrictionFit:
-    """Fit mu_s, A, B and V_s of Eq. (4) to ``curve`` (speeds in m/s); see the module doc."""
+    """Fit mu_s, A, B and V_s of Eq. (4) to ``curve`` (speeds in m/s); see the module doc.
+
+    Parameters
+    ----------
+    curve : FrictionCurve
+        Measured mu against sliding speed (``read_curve``), optionally with ``mu_err``.
+
+    Returns
+    -------
+    FrictionFit
+        The coefficients with 95 % intervals, correlations, residual and warnings.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from model import FrictionCurve, FrictionLaw, fit_friction
+    >>> v = np.geomspace(1e-5, 1e-1, 60)                      # m/s
+    >>> truth = FrictionLaw(mu_s=1.3, A=1.44, B=-20, V_s=1e-3)
+    >>> fit = fit_friction(FrictionCurve(v, truth.mu(v)))
+    >>> fit.success, round(fit.values["mu_s"], 3), round(fit.values["V_s"] * 1e3, 3)
+    (True, 1.3, 1.0)
+    """
     v, mu = curve.v, curve.mu
     sigma = np.ones_like(mu) if curve.mu_err is None else curve.mu_err
     v_pos = v[v > 0]

@@ -96,8 +96,11 @@ class FrictionLaw:
 
     @classmethod
     def from_dict(cls, record: dict, source: str = "friction law") -> "FrictionLaw":
-        """A law from ``{"mu_s": 1.3, ...}`` or a fit's JSON (``{"mu_s": {"value": 1.3,
-        "ci95": [...]}, ...}``); V_s in m/s. ``ValueError`` naming the key otherwise."""
+        """A law from a dict of the four coefficients or from a fit's JSON.
+
+        Plain numbers (``{"mu_s": 1.3, "A": 1.44, ...}``) or the fit's records
+        (``{"mu_s": {"value": 1.3, "ci95": [1.2, 1.4]}, ...}``); V_s in m/s.
+        ``ValueError`` naming the key otherwise."""
         if not isinstance(record, dict):
             raise ValueError(f"{source}: expected a JSON object with keys "
                              f"{', '.join(COEFFICIENTS)}, not {type(record).__name__}")
@@ -127,7 +130,7 @@ class FrictionLaw:
 
     @classmethod
     def from_json(cls, path) -> "FrictionLaw":
-        """The law in a JSON file (``micropillar friction fit ... --out fit.json``)."""
+        """The law in a JSON file (``micropillar friction fit FILE.csv --out fit.json``)."""
         from .files import read_user_text
 
         name, text = Path(path).name, read_user_text(path, "JSON")
