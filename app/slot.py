@@ -194,6 +194,7 @@ class Slot:
         return self.generation, self._future, req
 
     async def _drain(self, job) -> None:
+        last = None  # the final result: applied with the busy marker's clearing, one message
         try:
             while job is not None:
                 generation, future, req = job
@@ -205,13 +206,24 @@ class Slot:
                     value, error = None, None
                 except Exception as exc:
                     value, error = None, exc
-                if generation == self.generation and not future.cancelled():
-                    self._locked(self._finish, req, value, error)
+                current = generation == self.generation and not future.cancelled()
                 job = self._take() if self._pending is not None and not self.closed else None
+                if current and job is None:
+                    last = (req, value, error)
+                elif current:
+                    self._locked(self._finish, req, value, error)
         finally:
             self._running = False
             self._future = None
-            self._locked(self.owner._set_busy, self.name, False)
+            self._locked(self._settle, last)
+
+    def _settle(self, last) -> None:
+        """Apply the final result, if any, and clear the busy marker unless a new job has
+        started meanwhile (a follow-up request, or a change that came in between)."""
+        if last is not None:
+            self._finish(*last)
+        if not self._running:
+            self.owner._set_busy(self.name, False)
 
     def _finish(self, req: Request, value, error) -> None:
         if error is not None:
