@@ -20,6 +20,7 @@ from model.friction import mu
 
 from .common import BLACK, annotation, new_figure, source, sources
 from .histories import ENERGY_COLORS, ENERGY_LABELS, ENERGY_TERMS
+from .player import UI_MS
 from .scene import (ARROW_SCALE, FORCE_COLOR, LABEL_ROOM_X, LABEL_ROOM_Y, SLAB_COLOR, STRIPES,
                     VREL_COLOR, _extent, view_box)
 
@@ -117,14 +118,21 @@ def live_energy_figure(energies: dict, player, width: int = 420, height: int = 3
         "energy_live_frames", energy_live_data(energies)["energy_live_frames"])
     # Drawn when the frame changes and when new histories arrive (at the current frame).
     draw = CustomJS(args=dict(bars=bars, data=data, readout=readout, frame=player.frame,
-                              terms=list(ENERGY_TERMS)), code="""
+                              terms=list(ENERGY_TERMS), ui_ms=float(UI_MS)), code="""
         const e = data.data, b = bars.data, i = Math.min(frame.value, e.tau.length - 1);
         b.top[0] = e.W[i];
         let base = 0;
         terms.forEach((k, j) => { b.bottom[j + 1] = base; base += e[k][i]; b.top[j + 1] = base; });
         bars.change.emit();
-        readout.setv({text: `τ = ${e.tau[i].toFixed(2)}: W = ${e.W[i].toFixed(3)} = ` +
-          terms.map((k) => `${k} ${e[k][i].toFixed(3)}`).join(" + ") + "  (m V₀²)"}, {sync: false});""")
+        // The readout is DOM: each change lays the page out again (~40 ms a frame), so
+        // while playing it is written at most every ui_ms, and once more when it settles.
+        const write = () => readout.setv({text: `τ = ${e.tau[i].toFixed(2)}: W = ` +
+          `${e.W[i].toFixed(3)} = ` + terms.map((k) => `${k} ${e[k][i].toFixed(3)}`).join(" + ")
+          + "  (m V₀²)"}, {sync: false});
+        const now = performance.now();
+        clearTimeout(readout.__later);
+        if (!(now - (readout.__t || 0) < ui_ms)) { readout.__t = now; write(); }
+        else readout.__later = setTimeout(write, ui_ms);""")
     player.on_frame(draw)
     data.js_on_change("data", draw)
     from bokeh.layouts import column
