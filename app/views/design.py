@@ -61,6 +61,13 @@ DESIGN_ROW_CSS = f"""
 }}
 """
 
+#: A row of the distribution editor's fields: projected, their captions are larger than
+#: the fields' normal widths, so each field grows to its caption and the row wraps.
+FIELDS_CSS = """
+:host { flex-wrap: wrap !important; row-gap: 4px; }
+:host(.projector) > :not(style):not(link) { width: auto !important; min-width: 150px; }
+"""
+
 #: Projected, the map and the distribution side by side over the window's height.
 PROJECTED = projector_grid("minmax(0, 1fr)", below=0, columns="minmax(0, 1fr) minmax(0, 1fr)")
 
@@ -350,13 +357,16 @@ class DesignView(pn.viewable.Viewer):
         left = pn.Column(pn.pane.Markdown("**Pillar array** (values with units)",
                                           margin=(0, 5)), grid, self.point_text, width=315,
                          css_classes=["design-inputs"])
+        projector = self.state.projector
+        fields = [pn.Row(*row, margin=0, stylesheets=[FIELDS_CSS],
+                         css_classes=mode_classes(["design-fields"], projector))
+                  for row in ((self.family, self.angle, self.kappa, self.psi),
+                              (self.family2, self.angle2, self.kappa2, self.mix))]
         right = pn.Column(
-            pn.Row(self.family, self.angle, self.kappa, self.psi, margin=0),
-            pn.Row(self.family2, self.angle2, self.kappa2, self.mix, margin=0), self.upload,
+            *fields, self.upload,
             self.table, self.compare, pn.Row(self.objective, self.bound, margin=0),
             pn.Row(self.optimise_button, self.cancel_button, margin=0),
             self.optimum_text, width=345, css_classes=["design-side"])
-        projector = self.state.projector
         figures = pn.Column(self.map_pane, self.polar_pane, margin=0,
                             sizing_mode="stretch_both",
                             css_classes=mode_classes(["design-figures"], projector),
@@ -366,5 +376,5 @@ class DesignView(pn.viewable.Viewer):
                                                   projector=PROJECTED)])
         row = pn.Row(left, figures, right, css_classes=mode_classes(["design-view"], projector),
                      sizing_mode="stretch_both", stylesheets=[DESIGN_ROW_CSS])
-        self._layouts = [figures, row]
+        self._layouts = [figures, row, *fields]
         return row

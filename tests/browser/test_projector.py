@@ -149,3 +149,35 @@ def test_projector_mode_helps_every_tab(screen, app_url, tab):
             for b in labels[i + 1:]:
                 assert not _overlap(a["box"], b["box"]), \
                     f"{tab}: {name}'s labels {a['text']!r} and {b['text']!r} overlap: {a}, {b}"
+
+
+def test_projected_design_field_captions_fit_their_fields(screen, app_url):
+    """Projected, the distribution editor's captions (larger text) stay within their own
+    field: none runs into the next one ("θ₀, mean [°]" over "κ")."""
+    size, _normal, page = screen
+    _show(page, f"{app_url}?projector=1", "design")
+    page.locator(".ctl-dist_deg").first.scroll_into_view_if_needed()
+    page.wait_for_timeout(300)
+    boxes = page.evaluate("""(names) => {
+      const out = [], fields = [];
+      const walk = (root) => { for (const el of root.querySelectorAll("*")) {
+        if (el.classList && names.some((n) => el.classList.contains(n))) fields.push(el);
+        if (el.shadowRoot) walk(el.shadowRoot); } };
+      walk(document);
+      for (const field of fields) {
+        const label = field.shadowRoot && field.shadowRoot.querySelector("label");
+        if (!label || !label.textContent.trim()) continue;
+        const f = field.getBoundingClientRect();
+        // The caption's text, as drawn (its box may be the field's width).
+        const range = document.createRange(); range.selectNodeContents(label);
+        const t = range.getBoundingClientRect();
+        out.push({text: label.textContent.trim(), field: [f.left, f.top, f.width, f.height],
+                  caption: [t.left, t.top, t.width, t.height]});
+      }
+      return out;
+    }""", [f"ctl-{n}" for n in ("dist_family", "dist_deg", "dist_kappa", "dist_psi",
+                                "dist2_family", "dist2_deg", "dist2_kappa", "mix_weight")])
+    assert len(boxes) >= 8, f"the distribution editor's fields were not found: {boxes}"
+    for b in boxes:
+        assert _inside(b["caption"], b["field"], slack=2.0), \
+            f"{size}: the caption {b['text']!r} runs out of its field: {b}"
