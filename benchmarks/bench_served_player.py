@@ -24,12 +24,10 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 _COUNT_JS = """async ([prefix, ms]) => {
-  let frame = null, play = null;
-  for (const d of Bokeh.documents) for (const m of d.all_models) {
+  let play = null;
+  for (const d of Bokeh.documents) for (const m of d.all_models)
     if (m.name === prefix + "_play") play = m;
-    if (m.type && m.type.endsWith("PlayerFrame") && frame === null) frame = m;
-  }
-  // The frame model of this player: the one whose changes follow its play button.
+  // Every player's frame changes; the first to change is the one this button plays.
   const frames = [];
   for (const d of Bokeh.documents) for (const m of d.all_models)
     if (m.type && m.type.endsWith("PlayerFrame")) m.connect(m.properties.value.change,
