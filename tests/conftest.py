@@ -1,4 +1,13 @@
-"""Shared fixtures."""
+"""Shared fixtures, and how the suite is spread over the machine's cores.
+
+The README's test command runs the suite on every core (pytest-xdist, ``-n auto`` in
+pyproject.toml). Tests travel to a core by module, so a module's fixtures are built once;
+the browser tests travel together (``tests/browser``): they share one served dashboard and
+one Chromium, which would otherwise start again on each core and each time a core came back
+to them.
+"""
+from pathlib import Path
+
 import pytest
 
 from model.params import REGIMES
@@ -52,3 +61,15 @@ def pool(monkeypatch):
     monkeypatch.setattr(slot, "work_pool", lambda: pool)
     monkeypatch.setattr(results_module, "work_pool", lambda: pool)
     return pool
+
+
+BROWSER_DIR = Path(__file__).parent / "browser"
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection_modifyitems(config, items):
+    """Group each test with its module, the browser tests all together (``--dist loadgroup``)."""
+    for item in items:
+        path = Path(str(item.fspath))
+        group = "browser" if BROWSER_DIR in path.parents else path.stem
+        item.add_marker(pytest.mark.xdist_group(group))
