@@ -87,9 +87,9 @@ DEFAULTS = dict(k_r=CONTROLS["k_r"].default, k_theta=CONTROLS["k_theta"].default
                 orientation="uniform", play=False, pinned=None)
 
 #: The longest ``A=`` value read (``app.pinned_state``): the support's values (under 100
-#: characters) and every design input at its longest (40) with every distribution value
-#: take under 900.
-MAX_PINNED_CHARS = 1000
+#: characters) and every design input at its longest (40; the friction law's included)
+#: with every distribution value take under 1100.
+MAX_PINNED_CHARS = 1200
 
 # ---------------------------------------------------------------- Design tab
 #: The default pillars: the LDPE example of the notes (``PillarDesign.example``) at V0 = 1
