@@ -70,7 +70,7 @@ def law_data(law, fit=None, curve=None, V0: float | None = None):
     return data, (v_lo, v_hi), (bottom, top)
 
 
-def law_figure(width: int = 310, height: int = 250):
+def law_figure(width: int = 310, height: int = 300):
     """Fig. 3 in physical units, empty: the law, a fit's band, measured points, V0."""
     fig = new_figure("design_law", "Friction law μ(v), Eq. (4) (Fig. 3)", width, height,
                      x_axis_type="log", x_axis_label="sliding speed v [m/s]",
@@ -78,21 +78,22 @@ def law_figure(width: int = 310, height: int = 250):
                      y_range=Range1d(-0.06, 1.5))
     band = source("law_band", EMPTY["law_band"])
     fig.varea(x="v", y1="lo", y2="hi", source=band, fill_color=BLUE, fill_alpha=0.25,
-              legend_label="fit: 95 % band")
+              legend_label="fit, 95 % band")
     measured = source("law_measured", EMPTY["law_measured"])
     fig.segment(x0="v", y0="lo", x1="v", y1="hi", source=measured, line_color=GREY)
     fig.scatter("v", "mu", source=measured, size=5, fill_color="white", line_color=BLUE,
-                legend_label="measured (± mu_err)")
+                legend_label="measured ± mu_err")
     fig.line("v", "mu", source=source("law", EMPTY["law"]), line_color=BLACK, line_width=2,
              legend_label="law in use")
     fig.scatter("v", "mu", source=source("law_V0", EMPTY["law_V0"]), size=10, marker="square",
-                fill_color=VERMILION, line_color=BLACK, legend_label="μ(V₀), the design's speed")
-    # Inside, under the plateau of the curve (mu rises from 0 at v = 0 to its peak).
-    fig.legend.location = "bottom_right"
-    fig.legend.label_text_font_size = f"{MIN_TEXT_PX}px"
-    fig.legend.padding = 2
-    fig.legend.spacing = 0
-    fig.legend.background_fill_alpha = 0.7
+                fill_color=VERMILION, line_color=BLACK, legend_label="μ(V₀), design")
+    # Below the plot in two columns, where it hides no point of the curve.
+    legend = fig.legend[0]
+    legend.update(ncols=2, location="center", label_text_font_size=f"{MIN_TEXT_PX}px",
+                  padding=1, spacing=0, margin=2, glyph_width=14, label_standoff=2,
+                  click_policy="hide")
+    fig.center = [m for m in fig.center if m is not legend]
+    fig.add_layout(legend, "below")
     return fig
 
 

@@ -105,7 +105,7 @@ class FrictionLawView(pn.viewable.Viewer):
         super().__init__(**params)
         s = self.state
         self.inputs = {name: pn.widgets.TextInput.from_param(
-            s.param[name], **caption(DESIGN_INPUTS[name][2]), width=70, margin=(0, 3),
+            s.param[name], **caption(DESIGN_INPUTS[name][2]), width=145, margin=(0, 3),
             css_classes=[f"ctl-{name}"], stylesheets=[INPUT_CSS]) for name in LAW_INPUTS}
         self.file = pn.widgets.FileInput(accept=".csv,.txt,text/csv,text/plain", width=300,
                                          margin=(2, 5), css_classes=["design-friction-file"],
@@ -175,5 +175,6 @@ class FrictionLawView(pn.viewable.Viewer):
     def __panel__(self):
         return pn.Column(pn.pane.Markdown("**Friction law**, Eq. (4): type it or fit it",
                                           margin=(4, 5, 0, 5)),
-                         pn.Row(*self.inputs.values(), margin=0), self.file, self.note,
+                         pn.GridBox(*self.inputs.values(), ncols=2, margin=0), self.file,
+                         self.note,
                          self.pane, margin=0, css_classes=["design-law"])
