@@ -12,7 +12,6 @@ leaves everything unchanged and its note names the problem in the command line's
 from __future__ import annotations
 
 import math
-import re
 
 import panel as pn
 import param
@@ -24,7 +23,9 @@ from .. import figures as F
 from ..figures.law import law_data, law_figure, set_axes
 from ..results import SessionResults
 from ..state import ExplorerState
+from ..upload import upload_text
 from ..urlstate import DEFAULTS, DESIGN_INPUTS, LAW_INPUTS
+from .design_upload import plain
 from .layout import INPUT_CSS
 from .locked import locked
 from .widgets import caption
@@ -34,13 +35,7 @@ from .widgets import caption
 MAX_BYTES = 64 * 1024
 MAX_POINTS = 1000
 FORMAT = "CSV: header v [unit],mu (optionally ,mu_err)"
-_MARKUP = re.compile(r"([\\`*_{}\[\]()#!|<>&~])")
 _NAMES = {"mu_s": "μ_s", "A": "A", "B": "B", "V_s": "V_s"}
-
-
-def _plain(text: str) -> str:
-    """``text`` from a file shown literally in Markdown."""
-    return _MARKUP.sub(r"\\\1", text)
 
 
 def read_upload(data: bytes, filename: str = ""):
@@ -48,15 +43,8 @@ def read_upload(data: bytes, filename: str = ""):
     wrong (empty, too large, not text, too many points, or the line the command line's
     reader refuses)."""
     name = filename or "the uploaded file"
-    if not data:
-        raise ValueError(f"{name} is empty: upload a {FORMAT} file")
-    if len(data) > MAX_BYTES:
-        raise ValueError(f"{name} is too large ({len(data):,} bytes, at most {MAX_BYTES:,}); "
-                         f"fit it with: micropillar friction fit FILE.csv")
-    try:
-        text = data.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        raise ValueError(f"{name}: not a text file (expected UTF-8 CSV)") from None
+    text = upload_text(data, name, MAX_BYTES, f"upload a {FORMAT} file",
+                       "fit it with: micropillar friction fit FILE.csv")
     try:
         curve = curve_from_text(text, name, source=name)
     except CurveFileError as error:
@@ -77,7 +65,7 @@ def _speed(values) -> tuple[float, str]:
 def fit_markdown(fit, name: str, in_use: bool) -> str:
     """A fit's coefficients with their 95 % intervals, its residual and warnings."""
     if not fit.success:
-        return (f"**The fit of {_plain(name)} did not converge** ({_plain(fit.message)}); "
+        return (f"**The fit of {plain(name)} did not converge** ({plain(fit.message)}); "
                 "the law was not changed.")
     parts = []
     for key in ("mu_s", "A", "B", "V_s"):
@@ -87,11 +75,11 @@ def fit_markdown(fit, name: str, in_use: bool) -> str:
                     if math.isfinite(lo) and math.isfinite(hi) else "(no interval)")
         parts.append(f"{_NAMES[key]} = {value * factor:.4g} {interval}{' ' + unit if unit else ''}")
     weighted = ", weighted by mu_err" if fit.weighted else ""
-    lines = [f"**Fitted to {_plain(name)}** ({fit.n_points} points{weighted}; rms residual "
+    lines = [f"**Fitted to {plain(name)}** ({fit.n_points} points{weighted}; rms residual "
              f"{fit.rms_residual:.3g}; 95 % intervals):", "; ".join(parts) + ".",
              "The design uses this fit." if in_use else
              "**The design uses the law typed above, not this fit.**"]
-    lines += [f"⚠ {_plain(w)}" for w in fit.warnings]
+    lines += [f"⚠ {plain(w)}" for w in fit.warnings]
     return "  \n".join(lines)
 
 
@@ -130,7 +118,7 @@ class FrictionLawView(pn.viewable.Viewer):
         try:
             curve = read_upload(event.new, name)
         except ValueError as error:
-            self._problem = f"**Not loaded:** {_plain(str(error))}. Nothing was changed."
+            self._problem = f"**Not loaded:** {plain(str(error))}. Nothing was changed."
             self._redraw()
             return
         self._problem = ""
@@ -144,7 +132,7 @@ class FrictionLawView(pn.viewable.Viewer):
         try:
             law, problem = s.friction_law, ""
         except ValueError as error:
-            law, problem = None, f"**Friction law not usable:** {_plain(str(error))}"
+            law, problem = None, f"**Friction law not usable:** {plain(str(error))}"
         try:
             V0 = to_si("V0", s.design_V0)
         except ValueError:
