@@ -12,7 +12,7 @@ own error is not estimated). A measured speed outside the computed ones is refus
 extrapolation.
 
 The difference is measured - predicted; its RMS is over the speeds compared. A speed
-*disagrees* when |difference| exceeds the combined error: the model's error there (the
+*disagrees* when ``abs(difference)`` exceeds the combined error: the model's error there (the
 quadrature error of F_T,x/F_N, ``SpeedPoint.quadrature_error``) plus ``n_sigma`` times
 the measurement's standard error (``mu_err`` of the file, else ``DEFAULT_MU_ERR``).
 ``n_sigma = 2`` (about 95 % for Gaussian errors) keeps a measurement that agrees with the
@@ -44,7 +44,7 @@ _SAME_SPEED = 1e-9
 class FrictionComparison:
     """The predicted and measured friction of the structured surface at the measured
     speeds ``v`` (m/s): ``difference`` = measured - predicted, its ``rms``, the combined
-    ``tolerance`` and the ``disagree`` speeds (m/s) where |difference| exceeds it (module
+    ``tolerance`` and the ``disagree`` speeds (m/s) where ``abs(difference)`` exceeds it (module
     doc). A speed the model could not compute has NaN there and is not compared."""
 
     success: bool

@@ -27,18 +27,25 @@ NOISE, SEED = 0.02, 27
 SPEEDS_MM_S = np.geomspace(0.01, 100.0, 40)
 
 
+def _law_words(law: FrictionLaw) -> str:
+    return f"mu_s = {law.mu_s:g}, A = {law.A:g}, B = {law.B:g}, V_s = {law.V_s * 1e3:g} mm/s"
+
+
+def _csv(comments, v_unit: str, v, mu, noise: float) -> str:
+    """The file: ``comments`` as ``#`` lines, the header, one row per point."""
+    lines = [f"# {c}" for c in comments] + [f"v [{v_unit}],mu,mu_err"]
+    lines += [f"{a:.6g},{m:.5f},{noise:g}" for a, m in zip(v, mu)]
+    return "\n".join(lines) + "\n"
+
+
 def example_text() -> str:
     """The example file's text (the same on every run)."""
     rng = np.random.default_rng(SEED)
     mu = TRUE_LAW.mu(SPEEDS_MM_S * 1e-3) + rng.normal(0.0, NOISE, SPEEDS_MM_S.size)
-    law = TRUE_LAW
-    lines = [f"# Example data, not a measurement: Eq. (4) with mu_s = {law.mu_s:g}, "
-             f"A = {law.A:g}, B = {law.B:g}, V_s = {law.V_s * 1e3:g} mm/s,",
-             f"# plus Gaussian noise of standard deviation {NOISE:g} (numpy default_rng("
-             f"{SEED})); written by python -m model.friction_example.",
-             "v [mm/s],mu,mu_err"]
-    lines += [f"{v:.6g},{m:.5f},{NOISE:g}" for v, m in zip(SPEEDS_MM_S, mu)]
-    return "\n".join(lines) + "\n"
+    return _csv([f"Example data, not a measurement: Eq. (4) with {_law_words(TRUE_LAW)},",
+                 f"plus Gaussian noise of standard deviation {NOISE:g} (numpy default_rng("
+                 f"{SEED})); written by python -m model.friction_example."],
+                "mm/s", SPEEDS_MM_S, mu, NOISE)
 
 
 #: The structured sample (soft LDPE-like pillars, uniform orientations), as
@@ -66,16 +73,13 @@ def structured_text() -> str:
     rng = np.random.default_rng(SEED + 1)
     mu = curve.column("mu_apparent") + rng.normal(0.0, STRUCTURED_NOISE, STRUCTURED_SPEEDS.size)
     changes = ", ".join(f"{k} = {v}" for k, v in STRUCTURED_DESIGN.items() if k != "V0")
-    law = TRUE_LAW
-    lines = [f"# Example data, not a measurement: F_T,x/F_N of a uniform array of "
-             f"PillarDesign.example({changes}),",
-             f"# friction law Eq. (4) with mu_s = {law.mu_s:g}, A = {law.A:g}, B = {law.B:g}, "
-             f"V_s = {law.V_s * 1e3:g} mm/s (model.speed_curve), plus Gaussian noise",
-             f"# of standard deviation {STRUCTURED_NOISE:g} (numpy default_rng({SEED + 1})); "
-             f"written by python -m model.friction_example --structured.",
-             "v [m/s],mu,mu_err"]
-    lines += [f"{v:.6g},{m:.5f},{STRUCTURED_NOISE:g}" for v, m in zip(STRUCTURED_SPEEDS, mu)]
-    return "\n".join(lines) + "\n"
+    return _csv([f"Example data, not a measurement: F_T,x/F_N of a uniform array of "
+                 f"PillarDesign.example({changes}),",
+                 f"friction law Eq. (4) with {_law_words(TRUE_LAW)} (model.speed_curve), plus "
+                 f"Gaussian noise",
+                 f"of standard deviation {STRUCTURED_NOISE:g} (numpy default_rng({SEED + 1})); "
+                 f"written by python -m model.friction_example --structured."],
+                "m/s", STRUCTURED_SPEEDS, mu, STRUCTURED_NOISE)
 
 
 if __name__ == "__main__":  # pragma: no cover - exercised by tests/test_friction_compare.py
