@@ -75,7 +75,7 @@ def plot(result, **kw):
 
 
 @plot.register
-def _(curve: FrictionCurve, label_text: str = "measured", **kw):
+def _(curve: FrictionCurve, label_text: str = "measured"):
     data = {"v": curve.v, "mu": curve.mu}
     if curve.mu_err is None:
         return _opts(hv.Scatter(data, SPEED, MU, label=label_text), logx=True, size=6)
@@ -99,13 +99,13 @@ def _law_curve(law: FrictionLaw, v, name: str):
 
 
 @plot.register
-def _(law: FrictionLaw, v=None, **kw):
+def _(law: FrictionLaw, v=None):
     """Eq. (4) at speeds ``v`` (m/s; default two decades either side of V_s)."""
     return _law_curve(law, v, "friction law, Eq. (4)")
 
 
 @plot.register
-def _(fit: FrictionFit, v=None, **kw):
+def _(fit: FrictionFit, v=None):
     """The fitted law at speeds ``v``; overlay the data with ``* plot(curve)``."""
     f = fit.values
     name = (f"fit: μ_s {f['mu_s']:.3g}, A {f['A']:.3g}, B {f['B']:.3g}, "
@@ -114,7 +114,7 @@ def _(fit: FrictionFit, v=None, **kw):
 
 
 @plot.register
-def _(curve: SpeedCurve, **kw):
+def _(curve: SpeedCurve):
     """The flat material's mu(V0) and the structured surface's F_T,x/F_N (with its
     quadrature error, status and energy-balance residual on hover)."""
     data = {"v": curve.column("V0"), "flat": curve.column("mu_flat"),
@@ -130,7 +130,7 @@ def _(curve: SpeedCurve, **kw):
 
 
 @plot.register
-def _(c: FrictionComparison, kind: str = "curves", **kw):
+def _(c: FrictionComparison, kind: str = "curves"):
     """``kind="curves"``: measured (with the allowed error as bars) over predicted,
     disagreeing speeds marked; ``kind="difference"``: measured - predicted and the
     allowed error around zero."""
@@ -166,7 +166,7 @@ def _quantity(name: str) -> hv.Dimension:
 
 
 @plot.register
-def _(sweep: OrientationSweep, quantity: str = "FTx_over_mu0FN", **kw):
+def _(sweep: OrientationSweep, quantity: str = "FTx_over_mu0FN"):
     """``quantity`` of each fixed array against theta0 (hover: beta, N_c/N_c0)."""
     data = {"theta0_deg": np.degrees(sweep.theta0),
             quantity: np.asarray(getattr(sweep, quantity), dtype=float),
@@ -178,7 +178,7 @@ def _(sweep: OrientationSweep, quantity: str = "FTx_over_mu0FN", **kw):
 
 
 @plot.register
-def _(array: UniformArrayResult, quantity: str = "FTx_over_mu0FN", **kw):
+def _(array: UniformArrayResult, quantity: str = "FTx_over_mu0FN"):
     """The uniform array's average as a level over theta0 (overlay it on a sweep)."""
     value = float(getattr(array, quantity))
     data = {"theta0_deg": [0.0, 180.0], quantity: [value, value]}
@@ -187,7 +187,7 @@ def _(array: UniformArrayResult, quantity: str = "FTx_over_mu0FN", **kw):
 
 
 @plot.register
-def _(table: SweepResult, quantity: str = "FTx_over_mu0FN", **kw):
+def _(table: SweepResult, quantity: str = "FTx_over_mu0FN"):
     """A regime map (``regime_map``): ``quantity`` over (k_r, k_theta), log axes."""
     if table.kind != "regime_map":
         raise ValueError(f"plot() draws the regime map's table, not {table.kind!r}; plot "

@@ -157,6 +157,8 @@ def test_a_regime_map_is_a_mesh_over_log_stiffness_axes():
     assert "F_T,x/(μ₀F_N)" in _hover_text(fig)
 
 
-def test_other_results_are_refused_by_name():
+def test_other_results_and_unknown_options_are_refused_by_name(flat):
     with pytest.raises(TypeError, match="not dict"):
         plot({})
+    with pytest.raises(TypeError, match="colour"):
+        plot(flat, colour="red")  # nothing is silently ignored
