@@ -199,8 +199,8 @@ def _(table: SweepResult, quantity: str = "FTx_over_mu0FN"):
     grid = np.full((k_theta.size, k_r.size), math.nan)
     grid[np.searchsorted(k_theta, cols["k_theta"]), np.searchsorted(k_r, cols["k_r"])] = \
         cols[quantity]
-    mesh = hv.QuadMesh((_log_edges(k_r), _log_edges(k_theta), grid), [_quantity("k_r"), _quantity("k_theta")],
-                       _quantity(quantity))
+    mesh = hv.QuadMesh((_log_edges(k_r), _log_edges(k_theta), grid),
+                       [_quantity("k_r"), _quantity("k_theta")], _quantity(quantity))
     return _opts(mesh, logx=True, logy=True, colorbar=True, cmap="viridis")
 
 
