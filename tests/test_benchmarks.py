@@ -143,3 +143,6 @@ def test_friction_fit_benchmark_quick(tmp_path):
         s = r["seconds"]
         assert _spread_ok(s["min"], s["median"], s["max"]) and r["converged"] == r["runs"]
     assert data["speeds"]["n"] == 5 and data["speeds"]["success"]
+    t = data["speeds"]["seconds"]
+    assert _spread_ok(t["min"], t["median"], t["max"]) and t["n"] == 2
+    assert "median [min–max] over 2 runs" in report
