@@ -244,6 +244,19 @@
     };
   }
 
+  /** The page's jobs (its Web Workers run this): "contact", the support at theta0 as its
+   * fixed array's contact (beta solved or given, like app.worker.compute_support), with
+   * its array's ``beta_note``; "sweep", Fig. 11's orientations; "uniform", the array. */
+  function job(kind, o) {
+    if (kind === "contact") {
+      var a = fixedArray(o.input, o.beta);
+      return assign(a.contact, {beta_note: a.beta_note, array_success: a.success});
+    }
+    if (kind === "sweep") return orientationSweep(o.base, o.theta0, o.beta);
+    if (kind === "uniform") return uniformArray(o.input, {beta: o.beta, tol: o.tol});
+    throw new RangeError(kind + " is not a job (contact, sweep, uniform)");
+  }
+
   return {fixedArray: fixedArray, orientationSweep: orientationSweep,
-          uniformArray: uniformArray, MAX_CONTACTS: MAX_CONTACTS};
+          uniformArray: uniformArray, job: job, MAX_CONTACTS: MAX_CONTACTS};
 }));
