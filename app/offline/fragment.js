@@ -1,5 +1,5 @@
 /* The offline explorer's state in the URL fragment (docs/offline.md, "Links"):
- * ``#k_r=3&k_theta=0.01&F_N=1&theta0_deg=90&tab=polar&beta_mode=fixed&beta=0.5``.
+ * ``#k_r=3&k_theta=0.01&F_N=1&theta0_deg=90&tab=polar&beta=0.5``.
  *
  *   parse(hash, config)  -> {state, notices}: the state a fragment asks for, and a notice
  *                           for every value it could not use (the default is kept);
@@ -7,8 +7,9 @@
  *
  * ``config`` is the page's configuration (app/offline/pack.py ``config()``: the controls'
  * ranges and defaults, the regimes, the tabs). The dashboard's links use the same keys
- * (app.urlstate), so a dashboard link's query is a fragment here: a tab the page does not
- * have opens its closest (``config.closest_tabs``) with a notice saying what needs the
+ * (app.urlstate), so a dashboard link's query is a fragment here: ``beta`` a number (a
+ * fixed load factor) or ``self`` (solved, the default); a tab the page does not have
+ * opens its closest (``config.closest_tabs``) with a notice saying what needs the
  * server. Works as a browser script (``MicropillarFragment``) and in Node.
  */
 (function (root, factory) {
@@ -18,7 +19,7 @@
   else root.MicropillarFragment = api;
 }(typeof self !== "undefined" ? self : this, function () {
   "use strict";
-  var KEYS = ["k_r", "k_theta", "F_N", "theta0_deg", "beta"];  // numbers
+  var KEYS = ["k_r", "k_theta", "F_N", "theta0_deg", "beta"];  // numbers (beta also "self")
   var FLAGS = ["projector", "play"];                            // 0 or 1
 
   function defaults(config) {
@@ -64,6 +65,14 @@
     Object.keys(given).forEach(function (key) {
       var value = given[key], c = config.controls[key];
       if (key === "regime") return;
+      if (key === "beta" && value === "self") { s.beta_mode = "self"; return; }
+      if (key === "beta") {  // a number: the fixed load factor (app.urlstate)
+        var b = value.trim() === "" || value.length > 100 ? NaN : Number(value);
+        if (inRange(config, key, b)) { s.beta = b; s.beta_mode = "fixed"; }
+        else notices.push("beta=" + value.slice(0, 40) + " is not 'self' or " + c.expected +
+                          ": using the self-consistent β");
+        return;
+      }
       if (KEYS.indexOf(key) >= 0) {
         var x = value.trim() === "" || value.length > 100 ? NaN : Number(value);
         if (inRange(config, key, x)) s[key] = x;
@@ -72,10 +81,6 @@
       } else if (FLAGS.indexOf(key) >= 0) {
         if (value === "1" || value === "0") s[key] = value === "1";
         else notices.push(key + "=" + value.slice(0, 40) + " is not 0 or 1: ignored");
-      } else if (key === "beta_mode") {
-        if (config.beta_mode.choices.indexOf(value) >= 0) s.beta_mode = value;
-        else notices.push("beta_mode=" + value.slice(0, 40) + " is not " +
-                          config.beta_mode.expected + ": using " + s.beta_mode);
       } else if (key === "tab") {
         if (config.tabs.indexOf(value) < 0) {
           notices.push("tab=" + value.slice(0, 40) + " is not a tab (one of " + config.tabs.join(", ") +
@@ -96,7 +101,7 @@
       return k + "=" + Number(s[k].toPrecision(6));
     });
     if (s.tab && s.tab !== "support" && config.offline_tabs.indexOf(s.tab) >= 0) parts.push("tab=" + s.tab);
-    if (s.beta_mode === "fixed") parts.push("beta_mode=fixed", "beta=" + Number(s.beta.toPrecision(6)));
+    if (s.beta_mode === "fixed") parts.push("beta=" + Number(s.beta.toPrecision(6)));
     if (s.projector) parts.push("projector=1");
     return "#" + parts.join("&");
   }

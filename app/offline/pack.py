@@ -20,8 +20,10 @@ from __future__ import annotations
 import json
 import math
 import re
+from functools import lru_cache
 from importlib import resources
 from pathlib import Path
+from urllib.parse import urlencode
 
 from bokeh.document import Document
 from bokeh.embed import file_html
@@ -40,7 +42,8 @@ from ..urlstate import TABS
 from ..worker import UNIFORM_TOL
 from . import figures as views
 
-__all__ = ["page_html", "write", "config", "MAX_BYTES", "OFFLINE_TABS"]
+__all__ = ["page_html", "page_bytes", "write", "config", "initial_fragment", "MAX_BYTES",
+           "OFFLINE_TABS", "FRAGMENT_KEYS"]
 
 #: The page's size bound (the issue's target): BokehJS inlined is most of it.
 MAX_BYTES = 5 * 1024 * 1024
@@ -238,8 +241,33 @@ def _without_fetches(html: str) -> str:
     return _FETCH.sub("", html)
 
 
-def page_html() -> str:
-    """The whole page: Bokeh's document with BokehJS inlined, the kernel and the page code."""
+#: The keys of a dashboard link the offline page reads (its fragment, fragment.js); a
+#: session's other settings (rtol, the averages, the Design tab's inputs...) need the server.
+FRAGMENT_KEYS = ("regime", "k_r", "k_theta", "F_N", "theta0_deg", "beta", "tab", "projector",
+                 "play")
+
+
+def initial_fragment(query: dict) -> str:
+    """The fragment the page opens in for a dashboard link's ``query`` (app.urlstate's keys):
+    the keys it reads, in order (``#k_r=3&k_theta=0.01&...``); "" for none."""
+    kept = [(k, str(query[k])) for k in FRAGMENT_KEYS if k in query]
+    return "#" + urlencode(kept) if kept else ""
+
+
+def page_html(fragment: str = "") -> str:
+    """The whole page: Bokeh's document with BokehJS inlined, the kernel and the page code;
+    it opens in the state of ``fragment`` (``#k_r=3&...``: a link's own fragment wins)."""
+    if fragment and not fragment.startswith("#"):
+        raise ValueError(f"fragment={fragment[:40]!r} must start with '#' (e.g. '#k_r=3')")
+    html = _base_page()
+    at = html.rfind('<script id="mp-config"')  # before the page's scripts, which read it
+    return (html[:at] + _script("mp-initial", json.dumps(fragment).replace("</", "<\\/"),
+                                "application/json") + html[at:])
+
+
+@lru_cache(maxsize=1)
+def _base_page() -> str:
+    """The page without its initial state (built once per process: ~1 s)."""
     cfg = config()
     figs, polar, regime_map = views.support_figures(), views.polar_figures(), views.map_figure()
     cfg["maps"] = views.maps()
@@ -268,13 +296,20 @@ def page_html() -> str:
     return html[:head] + "\n" + head_extra + html[head:body] + extra + html[body:]
 
 
-def write(path) -> int:
-    """Write the offline explorer to ``path``; returns its size in bytes.
-
-    Raises ``ValueError`` when the page would exceed ``MAX_BYTES``."""
-    html = page_html().encode("utf-8")
+def page_bytes(fragment: str = "") -> bytes:
+    """``page_html(fragment)`` as UTF-8; ``ValueError`` when over ``MAX_BYTES``."""
+    html = page_html(fragment).encode("utf-8")
     if len(html) > MAX_BYTES:
         raise ValueError(f"the offline page is {len(html):,} bytes, over the bound of "
                          f"{MAX_BYTES:,}")
+    return html
+
+
+def write(path, fragment: str = "") -> int:
+    """Write the offline explorer to ``path`` (opening in ``fragment``'s state); returns
+    its size in bytes.
+
+    Raises ``ValueError`` when the page would exceed ``MAX_BYTES``."""
+    html = page_bytes(fragment)
     Path(path).write_bytes(html)
     return len(html)

@@ -479,8 +479,12 @@
     setState(partial, false);
   }
 
+  // The state the file was packed with (the dashboard's download button): used when the
+  // link has no fragment of its own.
+  var INITIAL = document.getElementById("mp-initial");
+  INITIAL = INITIAL ? JSON.parse(INITIAL.textContent) : "";
   function applyFragment() {
-    var parsed = parseFragment(location.hash);
+    var parsed = parseFragment(location.hash && location.hash !== "#" ? location.hash : INITIAL);
     state = parsed.state;
     showNotice(parsed.notices);
     syncControls();

@@ -313,3 +313,24 @@ def test_a_phone_gets_the_page_without_horizontal_scroll(browser, explorer_file)
         assert errors == []
     finally:
         context.close()
+
+
+def test_a_packed_state_opens_without_a_fragment(browser, tmp_path):
+    """The dashboard's download: the file packed with a state opens in it (fixed beta)."""
+    path = tmp_path / "explorer.html"
+    write(path, "#k_r=0.5&k_theta=0.2&F_N=3&theta0_deg=120&beta=0.4&tab=polar&projector=1")
+    offline = Offline(browser, path)
+    try:
+        offline.open()
+        state = offline.page.evaluate("explorer.state")
+        assert state == {"tab": "polar", "k_r": 0.5, "k_theta": 0.2, "F_N": 3, "theta0_deg": 120,
+                         "projector": True, "play": False, "beta_mode": "fixed", "beta": 0.4}
+        assert offline.model("beta-mode", "value") == "fixed"
+        assert offline.page.evaluate("explorer.result.params.beta") == 0.4
+        offline.page.wait_for_function(f"{POLAR} >= 1 && {UNIFORM} >= 1")
+        assert set(offline.page.evaluate("explorer.polar.beta")) == {0.4}
+        assert offline.page.evaluate("explorer.uniform.beta") == 0.4
+        assert "β = 0.400 (fixed)" in offline.text("uniform-readout")
+        assert offline.text("notice") == "" and offline.errors == []
+    finally:
+        offline.context.close()
