@@ -21,10 +21,8 @@
   var CONFIG = JSON.parse(document.getElementById("mp-config").textContent);
   var KERNEL = window.MicropillarKernel;
   var VIEWS = window.MicropillarViews;
-  var ARRAYS = window.MicropillarArrays;
   var CONTROLS = CONFIG.controls;
   var MAX_STEPS = 1000000;
-  var RESTART_AFTER_MS = 300;   // a newer request stops a computation older than this
 
   // ------------------------------------------------------------ state and fragment
   var FRAGMENT = window.MicropillarFragment;
@@ -76,78 +74,10 @@
   }
 
   // ------------------------------------------------------------ computing
-  // Three workers, each with its own queue: the support's fixed array (the Support tab,
-  // the headline), the orientation sweep (Fig. 11) and the uniform array (the headline's
-  // average over all orientations), so a long sweep or array never delays the support.
-  // Each runs arrays.js's ``job`` (kernel.js + solvers.js + arrays.js).
-  var WORKER_CODE =
-    "\nself.onmessage = function (e) {\n" +
-    "  var t0 = Date.now(), r;\n" +
-    "  try { r = MicropillarArrays.job(e.data.kind, e.data.input); }\n" +
-    "  catch (error) { r = {error: error.message}; }\n" +
-    "  self.postMessage({id: e.data.id, result: r, ms: Date.now() - t0});\n};\n";
-  var WORKER_SCRIPTS = ["mp-kernel", "mp-solvers", "mp-arrays"];
-
-  function startWorker(channel) {
-    try {
-      var code = WORKER_SCRIPTS.map(function (id) {
-        return document.getElementById(id).textContent;
-      }).join("\n") + WORKER_CODE;
-      var url = URL.createObjectURL(new Blob([code], {type: "text/javascript"}));
-      var w = new Worker(url);
-      URL.revokeObjectURL(url);
-      w.onmessage = function (e) { finished(channel, e.data.id, e.data.result, e.data.ms); };
-      w.onerror = function () { channel.worker = null; };
-      return w;
-    } catch (error) {
-      return null;  // no workers (an old browser): compute on the page, one job at a time
-    }
-  }
-
-  function Channel(kind, draw, busy) {
-    this.kind = kind; this.draw = draw; this.busy = busy;
-    this.worker = null; this.inFlight = null; this.pending = null;
-  }
-  var nextId = 1;
-
-  function request(channel, input) {
-    var job = {id: nextId++, input: input, started: Date.now()};
-    if (channel.inFlight) {
-      channel.pending = job;
-      if (channel.worker && Date.now() - channel.inFlight.started > RESTART_AFTER_MS) {
-        channel.worker.terminate();  // a long computation the user has moved on from
-        channel.worker = startWorker(channel);
-        channel.inFlight = null;
-        channel.pending = null;
-        send(channel, job);
-      }
-      return;
-    }
-    send(channel, job);
-  }
-
-  function send(channel, job) {
-    channel.inFlight = job;
-    channel.busy(true);
-    if (channel.worker) { channel.worker.postMessage({id: job.id, kind: channel.kind, input: job.input}); return; }
-    setTimeout(function () {
-      var t0 = Date.now(), r;
-      try {
-        r = ARRAYS.job(channel.kind, job.input);
-      } catch (error) { r = {error: error.message}; }
-      finished(channel, job.id, r, Date.now() - t0);
-    }, 0);
-  }
-
-  function finished(channel, id, result, ms) {
-    if (!channel.inFlight || channel.inFlight.id !== id) return;  // an abandoned job
-    var input = channel.inFlight.input;
-    channel.inFlight = null;
-    if (channel.pending) { var next = channel.pending; channel.pending = null; send(channel, next); return; }
-    channel.busy(false);
-    channel.draw(result, ms, input);
-  }
-
+  // Three job queues, each with its own Web Worker (jobs.js): the support's fixed array
+  // (the Support tab, the headline), the orientation sweep (Fig. 11) and the uniform array
+  // (the headline's average over all orientations), so neither array delays the support.
+  var Channel = window.MicropillarJobs.Channel;
   var contactChannel = new Channel("contact", drawSupport, function (on) {
     if (on) model("status").text = "computing…";
   });
@@ -377,11 +307,11 @@
   // ------------------------------------------------------------ the API
   var lastArrays = null;
   function compute() {
-    request(contactChannel, contactInput(state));
+    contactChannel.request(contactInput(state));
     if (arraysKey(state) !== lastArrays) {
       lastArrays = arraysKey(state);
-      request(sweepChannel, sweepInput(state));
-      request(uniformChannel, uniformInput(state));
+      sweepChannel.request(sweepInput(state));
+      uniformChannel.request(uniformInput(state));
     }
     drawMap();
   }
@@ -497,9 +427,7 @@
     doc.all_models.forEach(function (m) {
       if (m.name) (byName[m.name] = byName[m.name] || []).push(m);
     });
-    contactChannel.worker = startWorker(contactChannel);
-    sweepChannel.worker = startWorker(sweepChannel);
-    uniformChannel.worker = startWorker(uniformChannel);
+    [contactChannel, sweepChannel, uniformChannel].forEach(function (c) { c.start(); });
     applyFragment();
     window.addEventListener("hashchange", applyFragment);
     window.addEventListener("keydown", mapKeys, true);
