@@ -27,6 +27,7 @@ from .array import ArrayView
 from .arrays import LoadView, RegimeMapView
 from .browser import PageBehaviour
 from .export import ResultDownload, svg_button
+from .offline_download import offline_button
 from .code import CodeView
 from .controls import Controls
 from .design import DesignView
@@ -119,6 +120,7 @@ class Dashboard(pn.viewable.Viewer):
                              margin=(4, 10, 0, 10)),
             pn.Row(*self.downloads, sizing_mode="stretch_width"),
             svg_button(label="Figures on screen (SVG)", css="page-svg"),
+            offline_button(state),
             pn.pane.Markdown("**Animation of the support** (for slides)",
                              margin=(4, 10, 0, 10)),
             self.support.export, self.code, self.help])
