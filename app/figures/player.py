@@ -19,7 +19,9 @@ The slider and readout are DOM elements whose updates cost layout work; while pl
 they follow at most every ``UI_MS`` ms, the figures every frame.
 Keyboard: Space play/pause, <- -> one frame, Up/Down faster/slower, Home first frame,
 L loop. The keys go to the player last used (or last made ready) and are ignored while an
-input, select or text area has the focus.
+input, select or text area has the focus; Space and Enter on a focused button press that
+button. Autoplay is skipped when the reader asked for less motion
+(``prefers-reduced-motion: reduce``); Play still starts the player.
 """
 from __future__ import annotations
 
