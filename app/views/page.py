@@ -23,6 +23,7 @@ from ..results import SessionResults
 from ..state import URL_KEYS, ExplorerState
 from ..texts import HELP
 from ..urlstate import TABS
+from .access import PageAccess
 from .array import ArrayView
 from .arrays import LoadView, RegimeMapView
 from .browser import PageBehaviour
@@ -88,6 +89,7 @@ class Dashboard(pn.viewable.Viewer):
         self.behaviour = PageBehaviour(search=state.to_search(), margin=0, width=0, height=0)
         self.behaviour.param.watch(self._on_history, "pops")
         self.behaviour.param.watch(self._on_narrow, "narrow")
+        self.access = PageAccess(margin=0, width=0, height=0)
         # The other tabs are built when first shown: a quicker first page.
         self.array = self.polar = self.regime_map = self.load = self.equations = None
         self.design = None
@@ -319,7 +321,7 @@ class Dashboard(pn.viewable.Viewer):
         self._root = pn.Column(header, pn.Row(self.sidebar, main, sizing_mode="stretch_both",
                                               css_classes=["page-body"],
                                               stylesheets=[BODY_CSS]),
-                               self.behaviour, sizing_mode="stretch_both",
+                               self.behaviour, self.access, sizing_mode="stretch_both",
                                styles=self._root_styles, css_classes=[DASHBOARD_CLASS],
                                stylesheets=[ROOT_CSS])
         return self._root
