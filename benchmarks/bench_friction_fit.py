@@ -21,25 +21,21 @@ import argparse
 import json
 import math
 import platform
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))  # the repository's model/
+from scipy.optimize import curve_fit
 
-from scipy.optimize import curve_fit  # noqa: E402
+from model import FrictionCurve, FrictionLaw, fit_friction
+from model.distributions import VonMises
+from model.friction import law
+from model.friction_fit import _bounds, _starts
+from model.speed_curve import friction_velocity, speed_range
+from model.units import PillarDesign
 
-from model import FrictionCurve, FrictionLaw, fit_friction  # noqa: E402
-from model.distributions import VonMises  # noqa: E402
-from model.friction import law  # noqa: E402
-from model.friction_fit import _bounds, _starts  # noqa: E402
-from model.speed_curve import friction_velocity, speed_range  # noqa: E402
-from model.units import PillarDesign  # noqa: E402
-
-from spread import cell, cold_runs, spread  # noqa: E402
+from spread import cell, cold_runs, spread
 
 TRUE = FrictionLaw(V_s="1 mm/s")
 N_POINTS, NOISE = 1000, 0.02
