@@ -24,6 +24,8 @@ import numpy as np
 
 from model.distributions import Histogram
 
+from .upload import upload_text
+
 __all__ = ["MAX_UPLOAD_BYTES", "MAX_BINS", "LINK_MAX_BINS", "LINK_MAX_CHARS", "LEVELS", "read_upload",
            "link_text", "from_link", "link_note", "describe"]
 
@@ -74,16 +76,10 @@ def read_upload(data: bytes, filename: str = "") -> dict:
     """The state's form of an uploaded histogram file; ``ValueError`` naming what is wrong
     with the file (empty, too large, not text, not the CSV form, bad values)."""
     name = f"the file {filename!r}" if filename else "the uploaded file"
-    if data is None or len(data) == 0:
-        raise ValueError(f"{name} is empty: upload a CSV file with a header row "
-                         f"(theta0_deg,weight or lower_deg,upper_deg,weight) and one row per bin")
-    if len(data) > MAX_UPLOAD_BYTES:
-        raise ValueError(f"{name} is too large ({len(data):,} bytes, at most "
-                         f"{MAX_UPLOAD_BYTES:,}): a histogram needs one short row per bin")
-    try:
-        text = data.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        raise ValueError(f"{name} is not a text (UTF-8) CSV file") from None
+    text = upload_text(data, name, MAX_UPLOAD_BYTES,
+                       "upload a CSV file with a header row (theta0_deg,weight or "
+                       "lower_deg,upper_deg,weight) and one row per bin",
+                       "a histogram needs one short row per bin")
     hist = Histogram.from_text(text, name)
     n = len(hist.weights)
     if n > MAX_BINS:

@@ -2,7 +2,8 @@
 
 * ``STEPS``: the lesson's predict-observe-explain questions, each with the explorer state
   it opens (URL keys of ``app.urlstate``; ``tab=array`` is the array tab);
-* ``lesson_url(step)``: the link of a step. A lesson is taught from one screen, so its
+* ``lesson_url(step)``: the link of a step, and ``offline_url(step)`` its equivalent in the
+  offline explorer (``micropillar pack``: the same keys in the file's fragment). A lesson is taught from one screen, so its
   links keep the presentation: projector mode (``projector=1``) unless asked for a
   screen, and never autoplay (``play=1``): the animation waits at its first frame until
   the class has predicted and the teacher presses Play (Space);
@@ -28,7 +29,8 @@ from model import REGIMES, fixed_orientation, simulate_support, uniform_array
 
 from .texts import MECHANISMS
 
-__all__ = ["STEPS", "Step", "facts", "fact_line", "lesson_url", "REGIME_TEXTS", "BASE_URL"]
+__all__ = ["STEPS", "Step", "facts", "fact_line", "lesson_url", "offline_url", "REGIME_TEXTS",
+           "BASE_URL"]
 
 BASE_URL = "http://localhost:5006/app"
 #: |v_R| below this counts as "sticking" (the friction law peaks at |v_R| = 0.1 V0 = V_s).
@@ -68,6 +70,12 @@ STEPS = (
 def lesson_url(step: Step, projector: bool = True, base_url: str = BASE_URL) -> str:
     """The link of ``step`` (projector mode unless ``projector`` is False; paused)."""
     return f"{base_url}?{urlencode(step.query(projector))}"
+
+
+def offline_url(step: Step, projector: bool = True, file: str = "explorer.html") -> str:
+    """The link of ``step`` in the offline explorer: the dashboard link's keys in the file's
+    fragment (a tab the file does not have opens its closest, with a notice)."""
+    return f"{file}#{urlencode(step.query(projector))}"
 
 
 @lru_cache(maxsize=64)
@@ -118,7 +126,13 @@ def main(argv=None) -> int:
                         help="links for a screen (no projector mode)")
     parser.add_argument("--base-url", default=BASE_URL,
                         help=f"address of the served explorer (default {BASE_URL})")
+    parser.add_argument("--offline", action="store_true",
+                        help="the links' equivalents in the offline explorer (micropillar pack)")
     args = parser.parse_args(argv)
+    if args.offline:
+        for i, step in enumerate(STEPS, 1):
+            print(f"Q{i}  {offline_url(step, not args.screen)}")
+        return 0
     for step in STEPS:
         print(f"[{step.key}] {lesson_url(step, not args.screen, args.base_url)}\n"
               f"  {fact_line(step)}")

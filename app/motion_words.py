@@ -75,3 +75,22 @@ def regime_markdown(regime: str, data=None) -> str:
     title, mechanism = MECHANISMS[regime]
     here = motion_sentence(facts) if facts is not None else "*The motion is being computed.*"
     return f"**{title}.** {mechanism}\n\n{here}"
+
+
+def plots_description(data) -> str:
+    """What the One support tab's plots show for ``data`` (a ``SupportData``), in one
+    short paragraph for screen readers (``app.views.access.LiveDescription``): the top
+    view's swing and stretch (Eqs. 5-6), the time it moved with the slab (Eq. 4) and the
+    friction change of the fixed array (Eq. 10)."""
+    facts = motion_facts(data)
+    if facts is None:
+        return "The plots are being computed."
+    f, regime = facts, classify(facts["k_r"], facts["k_theta"])
+    return (f"Top view and friction histories, {regime} regime (k_r = {f['k_r']:.3g}, "
+            f"k_θ = {f['k_theta']:.3g}, F_N = {f['F_N']:.3g}): the support turned from "
+            f"{f['theta0_deg']:g}° to between {f['theta_min']:.0f}° and "
+            f"{f['theta_max']:.0f}°, ending at {f['theta_end']:.0f}°, and its length went "
+            f"from r₀ to between {f['r_min']:.3g} and {f['r_max']:.3g} r₀ while the slab "
+            f"slid along +x; it moved with the slab for {100 * f['stick_fraction']:.0f} % of "
+            f"the contact. Friction on the slab: {change_words(f['FTx_over_mu0FN'])}."
+            ).replace("-", "−")

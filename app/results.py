@@ -19,11 +19,11 @@ import param
 from . import worker
 from .compare import PinnedResults
 from .jobs import work_pool
+from .law_results import LawResults
 from .slot import Request, Slot, client_address
 from .state import DESIGN_KEYS, DIST_KEYS, OPTIMUM_KEYS, ExplorerState
 
 log = logging.getLogger(__name__)
-
 
 #: The Design tab's results computed while the tab is on screen (``SessionResults.show``).
 DESIGN_RESULTS = ("design_point", "design_array", "design_polar")
@@ -43,16 +43,15 @@ def optimum_family(state) -> str:
     return family if family in ("fixed", "pair", "vonmises") else "pair"
 
 
-#: The Fig. 6 curves of the paper's regimes (with the current springs' curve).
-LOAD_REGIMES = worker.LOAD_REGIMES
+LOAD_REGIMES = worker.LOAD_REGIMES  # the Fig. 6 curves of the paper's regimes
 
 
-class SessionResults(PinnedResults):
+class SessionResults(PinnedResults, LawResults):
     """Every result one session shows, computed from its ``ExplorerState``.
 
     Views depend on these parameters; the page sets what is ``needed`` (on screen). With a
     pinned state, ``A`` holds its results (``app.compare``); ``side`` is "A" for that one.
-    """
+    The Design tab's fitted friction law: ``app.law_results``."""
 
     support = param.ClassSelector(class_=worker.SupportData, allow_None=True, doc=(
         "the support at theta0 during one contact and its fixed array (Support tab)"))
@@ -114,6 +113,7 @@ class SessionResults(PinnedResults):
             s.param.watch(slot.invalidate, list(slot.depends))
         self._curves = {}
         self._init_pinned(side)
+        self._init_law()
 
     # ================================================================== Design tab
     # A pillar array in physical units (``state.design_*``) -> its dimensionless point

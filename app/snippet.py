@@ -17,6 +17,8 @@ import textwrap
 
 from model import __version__
 from model.cli.snippet import params_source, source
+from model.friction_law import COEFFICIENTS
+from model.units import to_si
 
 from . import worker
 from .pinned_state import complete
@@ -77,17 +79,38 @@ print(f"{w}uniform array: D_y/D_x = {{float(uniform{t}.Dy_over_Dx)!r}}, "
 '''
 
 
+def _law_source(inputs: dict) -> str:
+    """``FrictionLaw(...)`` of the Design tab's law inputs (numbers where they read as one,
+    else the text, so the snippet raises as the page does; V_s with its unit)."""
+    args = []
+    for name in COEFFICIENTS:
+        text = inputs[name].strip()
+        if name == "V_s":
+            args.append(f"V_s={source(text or None)}")
+            continue
+        try:
+            args.append(f"{name}={source(to_si(name, text))}")
+        except ValueError:
+            args.append(f"{name}={text!r}")
+    return f"FrictionLaw({', '.join(args)})"
+
+
 def _design_block(state, tag: str, who: str) -> str:
-    """The Design tab's array of ``state`` (as ``worker.compute_design_array``)."""
-    inputs = textwrap.fill(", ".join(f"{k}={v!r}" for k, v in state.design_inputs.items()),
+    """The Design tab's array of ``state`` (as ``worker.compute_design_array``): the
+    pillars, then their friction law (Eq. 4) as a ``FrictionLaw``."""
+    given = state.design_inputs
+    inputs = textwrap.fill(", ".join(f"{k}={v!r}" for k, v in given.items()
+                                     if k not in COEFFICIENTS),
                            width=88, initial_indent="    ", subsequent_indent="    ",
                            break_long_words=False, break_on_hyphens=False)
     t, w = tag, who
     return f'''
-# Design tab: the pillars in physical units, and their array for the orientation
-# distribution seen at the sliding direction psi (Eq. 5 in physical units, Fig. 11a)
+# Design tab: the pillars in physical units with their friction law (Eq. 4), and their
+# array for the orientation distribution seen at the sliding direction psi (Eq. 5 in
+# physical units, Fig. 11a)
+law{t} = {_law_source(given)}
 design{t} = PillarDesign(
-{inputs})
+{inputs}).with_friction(law{t})
 orientations{t} = from_dict({_value_source(state.distribution)})
 array{t} = evaluate(design{t}, orientations{t},
     psi=math.radians({source(float(state.dist_psi))}), beta={source(state.array_beta)},
@@ -116,6 +139,7 @@ import math
     who = "B " if pinned is not None else ""
     imports = "from model import Params, fixed_orientation, simulate_support, uniform_array"
     if design:
+        imports = imports.replace("from model import ", "from model import FrictionLaw, ")
         imports += ("\nfrom model.design_point import evaluate\n"
                     "from model.distributions import from_dict\n"
                     "from model.units import PillarDesign")

@@ -13,14 +13,15 @@ import math
 
 import param
 
-from model import REGIMES, Params
+from model import REGIMES, FrictionLaw, Params
 from model.controls import OBJECTIVES
+from model.units import to_si, ureg
 
 from .pinned_state import PINNED_ALL, PINNED_DIST_KEYS, PINNED_KEYS, complete
 from .urlstate import (AVERAGES, BETA_BOUNDS, BOUND_BOUNDS, DEFAULTS, DESIGN_INPUTS,
-                       DIST_FAMILIES, F_N_BOUNDS, K_BOUNDS, KAPPA_BOUNDS, MAP_QUANTITIES,
-                       MIX_BOUNDS, ORIENTATIONS, PSI_BOUNDS, RTOLS, TABS, parse, serialize,
-                       to_search)
+                       DIST_FAMILIES, F_N_BOUNDS, K_BOUNDS, KAPPA_BOUNDS, LAW_INPUTS,
+                       MAP_QUANTITIES, MIX_BOUNDS, ORIENTATIONS, PSI_BOUNDS, RTOLS, TABS, parse,
+                       serialize, to_search)
 
 #: Preset buttons: regime -> (k_r, k_theta) (Fig. 6 caption).
 PRESETS = {name: (p.k_r, p.k_theta) for name, p in REGIMES.items()}
@@ -171,6 +172,28 @@ class ExplorerState(param.Parameterized):
     opt_bound = param.Number(DEFAULTS["opt_bound"], bounds=BOUND_BOUNDS, allow_None=True,
                              doc="Design tab: the bound on |F_T,y|/(mu0 F_N) (min-FTx) or "
                                  "F_T,x/(mu0 F_N) (max-FTy); None: no bound")
+
+    friction_curve = param.Parameter(None, doc=(
+        "Design tab: the measured friction curve uploaded (a model.FrictionCurve, speeds in "
+        "m/s) that the friction law is fitted to; None: none uploaded. Not in the URL."))
+
+    @property
+    def friction_law(self) -> FrictionLaw:
+        """The Design tab's friction law, Eq. (4), from its four inputs (``LAW_INPUTS``; an
+        empty V_s: V0/zeta); ``ValueError`` naming an unusable coefficient."""
+        texts = {DESIGN_INPUTS[name][1]: getattr(self, name).strip() for name in LAW_INPUTS}
+        return FrictionLaw(**{k: to_si(k, v) for k, v in texts.items() if k != "V_s"},
+                           V_s=texts["V_s"] or None)
+
+    def set_friction_law(self, law: FrictionLaw) -> None:
+        """Set the four inputs to ``law`` (e.g. a fit's), 6 significant digits as the URL
+        keeps them, V_s with the SI prefix that reads best (``1.06501 mm/s``)."""
+        values = {"mu_s": f"{law.mu_s:.6g}", "A": f"{law.A:.6g}", "B": f"{law.B:.6g}",
+                  "V_s": ""}
+        if law.V_s is not None:
+            q = ureg.Quantity(law.V_s, "m/s").to_compact()
+            values["V_s"] = f"{q.magnitude:.6g} {q.units:~P}"
+        self.param.update(**{name: values[DESIGN_INPUTS[name][1]] for name in LAW_INPUTS})
 
     @property
     def design_inputs(self) -> dict:

@@ -25,7 +25,9 @@ URL keys (values in the units of the controls):
 ``play``       ``1`` to start the animations playing when the page opens
 ``projector``  ``1`` for projector mode
 ``d_<input>``  Design tab: a pillar-array input with its unit (``d_D=5 um``, ``d_V0=1 m/s``;
-               see ``DESIGN_INPUTS``); ``d_G`` empty means G from Poisson's ratio ``d_nu``
+               see ``DESIGN_INPUTS``); ``d_G`` empty means G from Poisson's ratio ``d_nu``;
+               the friction law of Eq. (4) is ``d_Vs`` (with its unit), ``d_mus``, ``d_A``
+               and ``d_B`` (within ``model.params.RANGES``)
 ``dist``       Design tab: ``fixed``, ``pair``, ``vonmises``, ``uniform`` or ``histogram``
 ``hist``       Design tab: an uploaded histogram of <= 40 equal bins (``app.histogram``)
 ``dist_deg``   Design tab: theta0 (fixed, pair) or the mean (von Mises) in degrees, [0, 360)
@@ -51,7 +53,9 @@ from urllib.parse import parse_qs, parse_qsl, urlencode
 from model import REGIMES
 from model.controls import CONTROLS, OBJECTIVES
 from model.quantities import AVERAGES as _AVERAGES, MAP_FIGURES
-from model.units import PillarDesign, quantity
+from model.friction_law import COEFFICIENTS, FrictionLaw
+from model.params import RANGES
+from model.units import PillarDesign, quantity, to_si
 
 from .histogram import LINK_MAX_BINS, from_link, link_text
 
@@ -83,9 +87,9 @@ DEFAULTS = dict(k_r=CONTROLS["k_r"].default, k_theta=CONTROLS["k_theta"].default
                 orientation="uniform", play=False, pinned=None)
 
 #: The longest ``A=`` value read (``app.pinned_state``): the support's values (under 100
-#: characters) and every design input at its longest (40) with every distribution value
-#: take under 900.
-MAX_PINNED_CHARS = 1000
+#: characters) and every design input at its longest (40; the friction law's included)
+#: with every distribution value take under 1100.
+MAX_PINNED_CHARS = 1200
 
 # ---------------------------------------------------------------- Design tab
 #: The default pillars: the LDPE example of the notes (``PillarDesign.example``) at V0 = 1
@@ -123,7 +127,13 @@ DESIGN_INPUTS = {
     "design_F_N": ("d_FN", "F_N", "F_N (total)", "total normal load F_N on the slab"),
     "design_V0": ("d_V0", "V0", "V₀", "sliding speed V₀"),
     "design_V_s": ("d_Vs", "V_s", "V_s", "velocity scale V_s of the friction law (ζ = V₀/V_s)"),
+    "design_mu_s": ("d_mus", "mu_s", "μ_s", "static friction coefficient μ_s of the friction "
+                                          "law (Eq. 4)"),
+    "design_A": ("d_A", "A", "A", "shape A of the friction law (Eq. 4)"),
+    "design_B": ("d_B", "B", "B", "shape B of the friction law (Eq. 4)"),
 }
+#: The design inputs that make its friction law, Eq. (4) (``model.FrictionLaw``).
+LAW_INPUTS = tuple(name for name, v in DESIGN_INPUTS.items() if v[1] in COEFFICIENTS)
 DESIGN_DEFAULTS = {name: _example_text(v[1]) for name, v in DESIGN_INPUTS.items()}
 #: Orientation distributions the Design tab edits (``model.distributions.FAMILIES``' names).
 DIST_FAMILIES = ("fixed", "pair", "vonmises", "uniform", "histogram")
@@ -210,6 +220,8 @@ def _design_text(field):
             return None
         try:
             quantity(field, text)
+            if field in COEFFICIENTS:  # within the law's bounds (``model.params.RANGES``)
+                FrictionLaw(**{field: to_si(field, text)})
         except ValueError:
             return None
         return text
@@ -217,7 +229,9 @@ def _design_text(field):
 
 
 for _name, (_key, _field, *_) in DESIGN_INPUTS.items():
-    _READERS[_key] = (_name, _design_text(_field), f"a quantity like {DESIGN_DEFAULTS[_name] or '0.36 GPa'!r}")
+    _READERS[_key] = (_name, _design_text(_field), f"a number in {RANGES[_field][0]}"
+                      if _field in COEFFICIENTS and _field in RANGES else
+                      f"a quantity like {DESIGN_DEFAULTS[_name] or '0.36 GPa'!r}")
 
 
 def _fmt(value: float) -> str:

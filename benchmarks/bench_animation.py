@@ -30,11 +30,8 @@ import tempfile
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-
-from model import REGIMES  # noqa: E402
-from app.figures.animation_page import array_document, page_html, support_document  # noqa: E402
+from model import REGIMES
+from app.figures.animation_page import array_document, page_html, support_document
 
 CHROMIUM = "/usr/bin/chromium"
 FLAGS = ["--no-sandbox", "--disable-gpu"]

@@ -27,15 +27,12 @@ from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))  # the repository's model/
+from model import REGIMES, fixed_orientation, orientation_sweep, simulate_support, uniform_array
+from model._kernel import warmup
+from model.support import _simulate
+from model.uniform import _uniform
 
-from model import REGIMES, SolverOptions, fixed_orientation, orientation_sweep, uniform_array  # noqa: E402
-from model._kernel import warmup  # noqa: E402
-from model.support import _simulate  # noqa: E402
-from model.uniform import _uniform  # noqa: E402
-
-from spread import cell, cold_runs  # noqa: E402
+from spread import cell, cold_runs
 
 
 def _clear():
@@ -115,7 +112,7 @@ def throughput(quick: bool) -> dict:
 
     def singles():
         for t in theta:
-            _simulate.__wrapped__(p.replace(theta0=float(t)), SolverOptions(), 0)
+            simulate_support(p.replace(theta0=float(t)), cache=False)
 
     out = {}
     for key, fn in (("batch", lambda: orientation_sweep(p, theta, beta=1.0)), ("single", singles)):
@@ -143,12 +140,11 @@ def peak_rss_mb(codes: dict) -> dict:
     memory does not depend on the others, and nothing is timed meanwhile.
     """
     tail = "\nimport resource; print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)"
-    path = os.pathsep.join([str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
     out = {}
     with tempfile.TemporaryDirectory() as empty:
         procs = {name: subprocess.Popen(
             [sys.executable, "-c", code + tail], stdout=subprocess.PIPE, text=True,
-            env={**os.environ, "PYTHONPATH": path, "MICROPILLAR_CACHE_DIR": str(Path(empty) / str(i))})
+            env={**os.environ, "MICROPILLAR_CACHE_DIR": str(Path(empty) / str(i))})
             for i, (name, code) in enumerate(codes.items())}
         for name, proc in procs.items():
             stdout, _ = proc.communicate(timeout=900)
@@ -173,9 +169,14 @@ def ms(v: float) -> str:
 
 
 def report(rows) -> str:
-    head = (f"# Array benchmarks\n\nmachine: {platform.processor() or platform.machine()}, "
+    return (f"# Array benchmarks\n\nmachine: {platform.processor() or platform.machine()}, "
             f"python {platform.python_version()}; medians over repeats, cold caches.\n\n"
-            "| computation | regime | beta | ms median [min–max] | runs | error | beta residual |\n"
+            + timings_table(rows))
+
+
+def timings_table(rows) -> str:
+    """The array computations: ms median [min–max] over cold-cache runs, with their errors."""
+    head = ("| computation | regime | beta | ms median [min–max] | runs | error | beta residual |\n"
             "|---|---|---|---|---:|---|---:|\n")
     lines = [f"| {r['what']} | {r['regime']} | {r['beta']} | "
              f"{cell(r['median_ms'], r['min_ms'], r['max_ms'], ms)} | {r['runs']} | "

@@ -15,14 +15,12 @@ import shutil
 import sys
 import tempfile
 import time
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.spread import cell, spread  # noqa: E402
-from model.cache import DiskCache  # noqa: E402
+from spread import cell, spread
+from model.cache import DiskCache
 
 
 def main(argv=None) -> int:

@@ -27,25 +27,17 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-# The served app imports `model` too: the repository on the path of child processes as well.
-os.environ["PYTHONPATH"] = os.pathsep.join(
-    [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
-
-from app.worker import POLAR_THETA0  # noqa: E402
-from app.worker import compute_support  # noqa: E402
-from model import Params  # noqa: E402
-from model.support import _simulate  # noqa: E402
-from model.sweeps import orientation_table  # noqa: E402
-from model.uniform import _uniform  # noqa: E402
+from app.worker import POLAR_THETA0
+from app.worker import compute_support
+from model import Params
+from model.support import _simulate
+from model.sweeps import orientation_table
+from model.uniform import _uniform
 
 
 def percentiles(samples) -> dict:
@@ -176,9 +168,13 @@ def timeline(key_s: float, change_ms: float, paint_ms: float, trace: list,
 
 
 def browser_side(presses: int, out: Path) -> dict:
-    from tests.browser.page_tools import measure_slider_latency, settle, slider_handle, wait_for_app
-    from tests.browser.serving import launch_chromium, serve_app
     from playwright.sync_api import sync_playwright
+
+    from checkout import helper
+    tools, serving = helper("browser/page_tools"), helper("browser/serving")
+    measure_slider_latency, settle = tools.measure_slider_latency, tools.settle
+    slider_handle, wait_for_app = tools.slider_handle, tools.wait_for_app
+    launch_chromium, serve_app = serving.launch_chromium, serving.serve_app
 
     trace_path = out / "bench-trace.jsonl"
     trace_path.unlink(missing_ok=True)
@@ -214,7 +210,12 @@ def browser_side(presses: int, out: Path) -> dict:
 
 
 def report(server: dict, browser: dict, cost: dict | None = None) -> str:
-    lines = ["# Dashboard latency", "", "| measurement | n | median ms [min–max] | p95 ms |",
+    return "# Dashboard latency\n\n" + table(server, browser, cost)
+
+
+def table(server: dict, browser: dict, cost: dict | None = None) -> str:
+    """Each measurement's median [min–max] and p95 in ms, the payloads and the page load."""
+    lines = ["| measurement | n | median ms [min–max] | p95 ms |",
              "|---|---:|---|---:|"]
     timings = {k: v for k, v in (cost or {}).items() if isinstance(v, dict) and "n" in v}
     for name, s in {**server, **{f"server CPU: {k}": v for k, v in timings.items()},

@@ -24,28 +24,24 @@ import argparse
 import json
 import math
 import platform
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))  # the repository's model/
+from model import REGIMES, Params, orientation_sweep
+from model import design as design_module
+from model._kernel import warmup
+from model.beta import solve_beta_scalar
+from model.contacts import run_contacts
+from model.design import optimise
+from model.distribution_array import _array, distribution_array
+from model.distributions import Uniform, VonMises
+from model.friction import mu0
+from model.options import SolverOptions
+from model.support import _simulate
 
-from model import REGIMES, Params, orientation_sweep  # noqa: E402
-from model import design as design_module  # noqa: E402
-from model._kernel import warmup  # noqa: E402
-from model.beta import solve_beta_scalar  # noqa: E402
-from model.contacts import run_contacts  # noqa: E402
-from model.design import optimise  # noqa: E402
-from model.distribution_array import _array, distribution_array  # noqa: E402
-from model.distributions import Uniform, VonMises  # noqa: E402
-from model.friction import mu0  # noqa: E402
-from model.options import SolverOptions  # noqa: E402
-from model.support import _simulate  # noqa: E402
-
-from spread import cell, cold_runs  # noqa: E402
+from spread import cell, cold_runs
 
 VM = VonMises(math.radians(60), 4.0)
 

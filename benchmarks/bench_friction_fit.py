@@ -8,9 +8,10 @@
   against the best honest alternative, ``scipy.optimize.curve_fit`` with the same bounds
   from the same first guess (the best of fit_friction's starts; finite-difference Jacobian,
   covariance only, no warnings). Median [min-max] over repeats, and each one's distance to the true coefficients.
-* One run of a 30-speed friction-velocity curve (``model.speed_curve``) of a von Mises
-  array (mean 60 deg, kappa 4) for soft pillars at 0.1-1 m/s (target <= 10 s on 2 cores;
-  5 speeds with --quick).
+* A 30-speed friction-velocity curve (``model.speed_curve``) of a von Mises array (mean
+  60 deg, kappa 4) for soft pillars at 0.1-1 m/s, in one process, each run with the
+  model's caches cleared: median [min-max] over ``--repeats`` runs (default 3; target
+  <= 10 s on 2 cores; 5 speeds twice with --quick).
 
 Timings on a shared, loaded machine are not trustworthy: re-measure on a quiet one.
 """
@@ -20,25 +21,21 @@ import argparse
 import json
 import math
 import platform
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))  # the repository's model/
+from scipy.optimize import curve_fit
 
-from scipy.optimize import curve_fit  # noqa: E402
+from model import FrictionCurve, FrictionLaw, fit_friction
+from model.distributions import VonMises
+from model.friction import law
+from model.friction_fit import _bounds, _starts
+from model.speed_curve import friction_velocity, speed_range
+from model.units import PillarDesign
 
-from model import FrictionCurve, FrictionLaw, fit_friction  # noqa: E402
-from model.distributions import VonMises  # noqa: E402
-from model.friction import law  # noqa: E402
-from model.friction_fit import _bounds, _starts  # noqa: E402
-from model.speed_curve import friction_velocity, speed_range  # noqa: E402
-from model.units import PillarDesign  # noqa: E402
-
-from spread import cell, spread  # noqa: E402
+from spread import cell, cold_runs, spread
 
 TRUE = FrictionLaw(V_s="1 mm/s")
 N_POINTS, NOISE = 1000, 0.02
@@ -95,19 +92,23 @@ def bench_fit(repeats: int) -> dict:
     return out
 
 
-def bench_speeds(n: int) -> dict:
-    design = PillarDesign.example(E="1 MPa", V0="1 m/s", V_s="1 mm/s", L_x="0.1 mm",
-                                  F_N="10 uN")
-    friction_velocity(design, [1.0], VonMises(math.radians(60), 4.0))  # kernel loaded
+def bench_speeds(n: int, repeats: int) -> dict:
+    """``repeats`` runs of an ``n``-speed curve, each with the model's caches cleared."""
     from model.distribution_array import _array
     from model.support import _simulate
 
-    _array.cache_clear()
-    _simulate.cache_clear()
-    start = time.perf_counter()
-    curve = friction_velocity(design, speed_range(0.1, 1.0, n),
-                              VonMises(math.radians(60), 4.0))
-    return {"n": n, "seconds": time.perf_counter() - start, "success": curve.success}
+    design = PillarDesign.example(E="1 MPa", V0="1 m/s", V_s="1 mm/s", L_x="0.1 mm",
+                                  F_N="10 uN")
+    dist = VonMises(math.radians(60), 4.0)
+    friction_velocity(design, [1.0], dist)  # kernel loaded
+
+    def clear():
+        _array.cache_clear()
+        _simulate.cache_clear()
+
+    seconds, curve = cold_runs(lambda: friction_velocity(design, speed_range(0.1, 1.0, n), dist),
+                               clear, min_total=0.0, lo=repeats, hi=repeats)
+    return {"n": n, "seconds": seconds, "success": curve.success}
 
 
 def report(fit: dict, speeds: dict) -> str:
@@ -121,8 +122,10 @@ def report(fit: dict, speeds: dict) -> str:
         lines.append(f"| {name} | {cell(s['median'], s['min'], s['max'])} | "
                      f"{cell(e['median'], e['min'], e['max'], lambda x: f'{x:.2g}')} | "
                      f"{r['converged']}/{r['runs']} |")
-    lines += ["", f"Friction-velocity curve, von Mises array, {speeds['n']} speeds: "
-                  f"{speeds['seconds']:.2f} s (one run, cold caches; target <= 10 s for 30), "
+    t = speeds["seconds"]
+    lines += ["", f"Friction-velocity curve, von Mises array, {speeds['n']} speeds, one "
+                  f"process: {cell(t['median'], t['min'], t['max'], lambda x: f'{x:.2f}')} s "
+                  f"(median [min–max] over {t['n']} runs, cold caches; target <= 10 s for 30), "
                   f"all speeds succeeded: {speeds['success']}", "",
               "Measured on a shared machine: re-measure on a quiet one before quoting."]
     return "\n".join(lines) + "\n"
@@ -132,9 +135,11 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="fewer repeats, 5 speeds")
     parser.add_argument("--out", type=Path, help="write friction_fit.md and .json here")
+    parser.add_argument("--repeats", type=int, default=3,
+                        help="runs of the 30-speed curve (default 3)")
     args = parser.parse_args(argv)
     fit = bench_fit(3 if args.quick else 15)
-    speeds = bench_speeds(5 if args.quick else 30)
+    speeds = bench_speeds(5, 2) if args.quick else bench_speeds(30, args.repeats)
     text = report(fit, speeds)
     print(text)
     if args.out:

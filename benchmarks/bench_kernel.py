@@ -23,14 +23,12 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repository's model/
 
-from model import REGIMES, Params, SolverOptions, simulate_support  # noqa: E402
-from model import _kernel  # noqa: E402
-from model.fixed import orientation_sweep  # noqa: E402
-from model.support import _simulate  # noqa: E402
+from model import REGIMES, Params, simulate_support
+from model import _kernel
+from model.fixed import orientation_sweep
 
-from spread import cell, spread  # noqa: E402
+from spread import cell, spread
 
 CASES = {"pendulum pi/2": (REGIMES["pendulum"], 1e-6),
          "hard F_N=10": (Params(k_r=0.01, k_theta=0.01, F_N=10, theta0=math.pi / 2), 1e-5)}
@@ -111,7 +109,7 @@ def throughput(repeats) -> dict:
     kern = timed(lambda: _kernel.integrate_batch(Y0, P, 1e-6, 1e-8, 0, 1_000_000, 1e5, False),
                  repeats, min_loop=0.05)
     sweep_ = timed(lambda: orientation_sweep(p, theta, beta=1.0), repeats, min_loop=0.05)
-    single = timed(lambda: _simulate.__wrapped__(p, SolverOptions(), 0), repeats)
+    single = timed(lambda: simulate_support(p, cache=False), repeats)
     return {"kernel_per_s": [theta.size / kern[k] for k in ("median", "max", "min")],
             "orientation_sweep_per_s": [theta.size / sweep_[k] for k in ("median", "max", "min")],
             "single_call_us": [single[k] * 1e6 for k in ("median", "min", "max")]}

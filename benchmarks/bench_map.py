@@ -20,19 +20,15 @@ import os
 import platform
 import resource
 import statistics
-import sys
 import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))  # the repository's model/
-
-from model._kernel import warmup  # noqa: E402
-from model.sweeps import regime_map  # noqa: E402
-from model.uniform import _uniform  # noqa: E402
+from model._kernel import warmup
+from model.sweeps import regime_map
+from model.uniform import _uniform
 
 
 def _cpu() -> float:

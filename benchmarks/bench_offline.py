@@ -1,14 +1,20 @@
 """The offline explorer's speed: one trajectory of the JavaScript kernel in Node and in
-Chromium, the page's open-to-first-plot time and slider key press -> redrawn.
+Chromium, the page's open-to-first-plot time, slider key press -> redrawn, and per regime
+(F_N = 1) the polar sweep (72 orientations) and the uniform array with its
+self-consistent beta at tol 1e-3, in Chromium.
 
-    python benchmarks/bench_offline.py [--repeats 30] [--presses 40]
+    python benchmarks/bench_offline.py [--repeats 30] [--presses 40] [--array-repeats 5]
 
 The trajectory is the pendulum at theta0 = pi/2, F_N = 1 at rtol 3e-7 (its exit-state error,
 7e-7,
 against Python's DOP853 at rtol 1e-13 is printed). Each figure is median [min-max] over
 ``--repeats`` batches (time per trajectory in a batch of 50, after a warm-up of 300). The
 targets (docs/offline.md): one trajectory <= 1 ms; open -> first plot <= 2 s; key press ->
-redrawn <= 50 ms p95; file <= 5 MB. Numbers measured while other jobs run are not
+redrawn <= 50 ms p95; file <= 5 MB; per regime, the polar sweep <= 100 ms and the uniform
+array with its self-consistent beta <= 1 s (each median [min-max] over ``--array-repeats``
+runs on the page's main thread, after the page's own first computations have finished;
+the sweep with each orientation's self-consistent beta, as the page draws it, and at
+beta = 1). Numbers measured while other jobs run are not
 trustworthy: measure on a quiet machine (and with ``busy_core.py`` for a shared server).
 """
 from __future__ import annotations
@@ -41,6 +47,29 @@ TIMING = """
 })"""
 
 
+ARRAYS = """
+(function (A, config, repeats) {
+  const out = {}, thetas = config.polar_theta0;
+  for (const [name, r] of Object.entries(config.regimes)) {
+    const base = {k_r: r.k_r, k_theta: r.k_theta, F_N: 1, rtol: 1e-6}, t = {self: [], one: [], uniform: []};
+    for (let j = 0; j < repeats; j++) {
+      let t0 = performance.now();
+      A.orientationSweep(base, thetas, "self");
+      t.self.push(performance.now() - t0);
+      t0 = performance.now();
+      A.orientationSweep(base, thetas, 1.0);
+      t.one.push(performance.now() - t0);
+      t0 = performance.now();
+      const u = A.uniformArray({k_r: r.k_r, k_theta: r.k_theta, F_N: 1}, {tol: config.uniform_tol});
+      t.uniform.push(performance.now() - t0);
+      t.contacts = u.stats.trajectories;
+    }
+    out[name] = t;
+  }
+  return out;
+})"""
+
+
 def spread(values, unit="ms", digits=3) -> str:
     v = sorted(values)
     return f"{statistics.median(v):.{digits}f} [{v[0]:.{digits}f}-{v[-1]:.{digits}f}] {unit}"
@@ -65,7 +94,7 @@ def node_times(repeats: int) -> list[float]:
                                      check=True).stdout)
 
 
-def browser_figures(path: Path, repeats: int, presses: int) -> dict:
+def browser_figures(path: Path, repeats: int, presses: int, array_repeats: int) -> dict:
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as p:
@@ -90,14 +119,20 @@ def browser_figures(path: Path, repeats: int, presses: int) -> dict:
             handle.press("ArrowLeft" if i % 2 else "ArrowRight")
             page.wait_for_function(f"explorer.drawn > {drawn}", polling="raf")
             redraw.append(1000 * (time.perf_counter() - t))
+        page.wait_for_function("explorer.polarDrawn >= 1 && explorer.uniformDrawn >= 1",
+                               timeout=120_000)
+        arrays = page.evaluate(f"{ARRAYS}(MicropillarArrays, JSON.parse(document.getElementById("
+                               f"'mp-config').textContent), {array_repeats})") if array_repeats else {}
         browser.close()
-    return dict(first=first, times=times, redraw=redraw)
+    return dict(first=first, times=times, redraw=redraw, arrays=arrays)
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=30)
     parser.add_argument("--presses", type=int, default=40)
+    parser.add_argument("--array-repeats", type=int, default=5,
+                        help="runs of each regime's polar sweep and uniform array (0: none)")
     args = parser.parse_args()
     if shutil.which("node") is None:
         raise SystemExit("node is not installed")
@@ -110,13 +145,20 @@ def main() -> None:
         print(f"exit-state error of the benchmark case: {exit_error():.1e}")
         print(f"one trajectory, Node {subprocess.run(['node', '--version'], text=True, capture_output=True).stdout.strip()}: "
               f"{spread(node_times(args.repeats))}")
-        figures = browser_figures(path, args.repeats, args.presses)
+        figures = browser_figures(path, args.repeats, args.presses, args.array_repeats)
     print(f"one trajectory, Chromium (page's main thread): {spread(figures['times'])}")
     print(f"open from file:// -> first plot: {figures['first']:.2f} s")
     redraw = sorted(figures["redraw"])
     p95 = redraw[min(len(redraw) - 1, math.ceil(0.95 * len(redraw)) - 1)]
     print(f"slider key press -> redrawn: {spread(redraw, digits=1)}, p95 {p95:.1f} ms "
           f"(Playwright's round trips included)")
+    for name, t in figures["arrays"].items():
+        print(f"{name}, F_N = 1, Chromium: polar sweep (72 orientations), self-consistent beta "
+              f"{spread(t['self'], digits=0)}; at beta = 1 {spread(t['one'], digits=0)}; "
+              f"uniform array with self-consistent beta, tol 1e-3 ({t['contacts']} contacts) "
+              f"{spread(t['uniform'], digits=0)}")
+    print("Figures measured while other jobs share the machine are not trustworthy: "
+          "re-measure on a quiet one.")
 
 
 if __name__ == "__main__":

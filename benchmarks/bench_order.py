@@ -21,12 +21,11 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repository's model/
 
-from model import REGIMES  # noqa: E402
-from model import _kernel  # noqa: E402
+from model import REGIMES
+from model import _kernel
 
-from spread import cell, spread  # noqa: E402
+from spread import cell, spread
 
 S = _kernel.slots
 

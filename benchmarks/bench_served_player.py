@@ -20,9 +20,6 @@ import statistics
 import sys
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-
 _COUNT_JS = """async ([prefix, ms]) => {
   let play = null;
   for (const d of Bokeh.documents) for (const m of d.all_models)
@@ -53,17 +50,17 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     from playwright.sync_api import sync_playwright
 
-    from tests.browser.page_tools import settle, wait_for_app
-    from tests.browser.serving import launch_chromium, serve_app
+    from checkout import helper
+    tools, serving = helper("browser/page_tools"), helper("browser/serving")
 
     width, height = (int(v) for v in args.size.split("x"))
     load0 = os.getloadavg()
     runs = []
-    with serve_app(Path("bench-out") / "served-player.log") as base, sync_playwright() as pw:
-        browser = launch_chromium(pw)
+    with serving.serve_app(Path("bench-out") / "served-player.log") as base, sync_playwright() as pw:
+        browser = serving.launch_chromium(pw)
         page = browser.new_page(viewport={"width": width, "height": height})
-        wait_for_app(page, f"{base}/app?tab={args.tab}{args.query}")
-        settle(page)
+        tools.wait_for_app(page, f"{base}/app?tab={args.tab}{args.query}")
+        tools.settle(page)
         page.wait_for_timeout(2000)
         for _ in range(args.repeats):
             runs.append(page.evaluate(_COUNT_JS, [f"{args.tab}_player", args.seconds * 1e3]))

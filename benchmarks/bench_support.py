@@ -16,12 +16,10 @@ DIR/work_precision.png; or the PNG with matplotlib) and prints the headline tabl
 from __future__ import annotations
 
 import argparse
-import datetime
 import functools
 import json
 import math
 import os
-import platform
 import subprocess
 import sys
 import tempfile
@@ -30,17 +28,15 @@ from pathlib import Path
 
 import numba
 import numpy as np
-import scipy
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repository's model/
 
-from model import REGIMES, Params, SolverOptions, simulate_support  # noqa: E402
-from model import _kernel  # noqa: E402
-from model.support import _simulate  # noqa: E402
+from model import REGIMES, Params, SolverOptions, simulate_support
+from model import _kernel
 
-from plots import plot  # noqa: E402
-from scipy_baselines import CUT, score, sweep_scipy  # noqa: E402
-from spread import cell, repeats_for, spread  # noqa: E402
+from machine import machine
+from plots import plot
+from scipy_baselines import CUT, score, sweep_scipy
+from spread import cell, repeats_for, spread
 
 OURS = ("auto", "explicit", "implicit")
 # "-lean": the researcher's script (scalar RHS, math functions); plain: 11-state numpy RHS.
@@ -122,9 +118,8 @@ def sweep_ours(params: Params, rtols: list, ref: dict) -> dict:
     for rtol in rtols:
         calls, firsts = {}, []
         for m in OURS:
-            options = SolverOptions(rtol=rtol, method=m)
             start = time.perf_counter()
-            res = _simulate.__wrapped__(params, options, 0)
+            res = simulate_support(params, rtol=rtol, method=m, cache=False)
             first = time.perf_counter() - start
             row = {"method": m, "rtol": rtol, "success": res.success,
                    "status": "ok" if res.success else res.message,
@@ -133,7 +128,8 @@ def sweep_ours(params: Params, rtols: list, ref: dict) -> dict:
             if res.success:
                 row["rel_energy"] = res.relative_energy_residual
                 score(row, res.t_out, res.state_out, ref)
-                calls[m] = functools.partial(_simulate.__wrapped__, params, options, 0)
+                calls[m] = functools.partial(simulate_support, params, rtol=rtol, method=m,
+                                             cache=False)
                 firsts.append(first)
         for m, t in zip(calls, time_calls(list(calls.values()), firsts)):
             rows[m][-1].update(seconds=t["median"], min_s=t["min"], max_s=t["max"], n_runs=t["n"])
@@ -260,15 +256,6 @@ def startup(repeats: int) -> dict:
             "warm_s": warm, "cold_compile_s": cold}
 
 
-def machine() -> dict:
-    """CPU, cores, versions and date for the report header."""
-    cpu = next((ln.split(":", 1)[1].strip() for ln in Path("/proc/cpuinfo").read_text().splitlines()
-                if ln.startswith("model name")), platform.processor() or "unknown")
-    return {"cpu": cpu, "cores": os.cpu_count(), "python": platform.python_version(),
-            "numpy": np.__version__, "scipy": scipy.__version__, "numba": numba.__version__,
-            "date": datetime.datetime.now().isoformat(timespec="seconds")}
-
-
 def fmt(v, digits=3) -> str:
     """A number for a table cell: thousands separated, else `digits` significant digits."""
     if v is None:
@@ -316,6 +303,17 @@ def sweep_table(rows: dict) -> str:
 
 def report(info, results, methods, start, notes, cut_notes, cost, cap, abort) -> tuple[str, str]:
     """(headline printed to stdout, full markdown report)."""
+    head = summary(results, methods, start, notes, cut_notes, cost, cap, abort)
+    machine_lines = [f"- {k}: {v}" for k, v in info.items()]
+    body = [f"## {case}\n\nReference: DOP853 rtol={r['reference']['rtol']:g}, atol=1e-15, "
+            f"tau_out={r['reference']['t_out']:.12g}.\n\n{sweep_table(r['rows'])}"
+            for case, r in results.items()]
+    return head, "\n\n".join(["# One support: speed against error", "\n".join(machine_lines), head,
+                              *body]) + "\n"
+
+
+def summary(results, methods, start, notes, cut_notes, cost, cap, abort) -> str:
+    """The headline table, the RHS cost, the start-up times and every cut or failed run."""
     ns = lambda v: f"{v * 1e9:.0f}"  # noqa: E731
     head = "\n".join([
         "Times per trajectory (us) at the target error: median [min–max] over repeated runs,",
@@ -331,12 +329,7 @@ def report(info, results, methods, start, notes, cut_notes, cost, cap, abort) ->
         "", "Scipy runs cut by the time cap:", *(f"- {n}" for n in cut_notes or ["none"]),
         "", "Failed runs, and scipy runs faster than auto at equal error:",
         *(f"- {n}" for n in notes or ["none"])])
-    machine_lines = [f"- {k}: {v}" for k, v in info.items()]
-    body = [f"## {case}\n\nReference: DOP853 rtol={r['reference']['rtol']:g}, atol=1e-15, "
-            f"tau_out={r['reference']['t_out']:.12g}.\n\n{sweep_table(r['rows'])}"
-            for case, r in results.items()]
-    return head, "\n\n".join(["# One support: speed against error", "\n".join(machine_lines), head,
-                              *body]) + "\n"
+    return head
 
 
 def main(argv=None) -> int:
@@ -348,7 +341,7 @@ def main(argv=None) -> int:
     args.out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
     for m in OURS:  # load (or compile) the kernel once per method before timing
-        _simulate.__wrapped__(REGIMES["pendulum"], SolverOptions(method=m), 0)
+        simulate_support(REGIMES["pendulum"], method=m, cache=False)
     cost = rhs_cost(REGIMES["pendulum"])
     methods = list(OURS) + list(SCIPY[mode])
     results, notes, cut_notes, phases = {}, [], [], {}

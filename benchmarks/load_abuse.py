@@ -44,15 +44,12 @@ import urllib.error
 import urllib.request
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
+from tornado.httpclient import AsyncHTTPClient, HTTPRequest
 
-from tornado.httpclient import AsyncHTTPClient, HTTPRequest  # noqa: E402
-
-from tests.browser.serving import serve_app  # noqa: E402
-from load_client import Session  # noqa: E402
-from load_probe import log_failures, log_tracebacks, server_pid, settled_rss_mb  # noqa: E402
-from load_test import server_env  # noqa: E402
+from checkout import helper
+from load_client import Session
+from load_probe import log_failures, log_tracebacks, server_pid, settled_rss_mb
+from load_test import server_env
 
 #: As the Docker image's CMD (Dockerfile): unused sessions are kept a minute.
 SERVE_ARGS = ("--check-unused-sessions", "10000", "--unused-session-lifetime", "60000")
@@ -122,7 +119,7 @@ class HealthChecks(threading.Thread):
         while not self._halt.is_set():
             start = time.perf_counter()
             done = subprocess.run([sys.executable, "-m", "app.healthcheck", self.base,
-                                   "--timeout", "25"], cwd=ROOT, capture_output=True,
+                                   "--timeout", "25"], capture_output=True,
                                   text=True, timeout=120)
             self.results.append((time.perf_counter() - start, done.returncode,
                                  done.stderr.strip()[-300:]))
@@ -189,9 +186,8 @@ def run(requests: int = 20, out: Path | str = "bench-out", settle_s: float = 5.0
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     log_path = out / "abuse-panel-serve.log"
-    os.environ["PYTHONPATH"] = os.pathsep.join(
-        [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
     load0 = os.getloadavg()
+    serve_app = helper("browser/serving").serve_app
     with serve_app(log_path, extra_args=SERVE_ARGS, env=server_env()) as base:
         # The burst comes once the server's worker processes have started and loaded the
         # kernel (seconds after a start, when they take both cores for ~1-2 s).

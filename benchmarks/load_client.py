@@ -8,24 +8,19 @@ import collections
 import math
 import random
 import re
-import sys
 import time
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-
-import panel  # noqa: E402,F401  (registers Panel's Bokeh models for the replicas)
-import app.views  # noqa: E402,F401  (and the app's own: the player's frame, the page's behaviour)
-from app.healthcheck import has_dashboard  # noqa: E402
-from bokeh.client.websocket import WebSocketClientConnectionWrapper  # noqa: E402
-from bokeh.document import Document  # noqa: E402
-from bokeh.events import DocumentReady  # noqa: E402
-from bokeh.protocol import Protocol  # noqa: E402
-from bokeh.protocol.receiver import Receiver  # noqa: E402
-from bokeh.util.token import get_session_id  # noqa: E402
-from tornado.httpclient import AsyncHTTPClient, HTTPRequest  # noqa: E402
-from tornado.websocket import websocket_connect  # noqa: E402
+import panel  # noqa: F401  (registers Panel's Bokeh models for the replicas)
+import app.views  # noqa: F401  (and the app's own: the player's frame, the page's behaviour)
+from app.healthcheck import has_dashboard
+from bokeh.client.websocket import WebSocketClientConnectionWrapper
+from bokeh.document import Document
+from bokeh.events import DocumentReady
+from bokeh.protocol import Protocol
+from bokeh.protocol.receiver import Receiver
+from bokeh.util.token import get_session_id
+from tornado.httpclient import AsyncHTTPClient, HTTPRequest
+from tornado.websocket import websocket_connect
 
 
 UPDATE_TIMEOUT_S = 30.0

@@ -7,17 +7,13 @@ import math
 import os
 import random
 import re
-import sys
 import threading
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
+import numpy as np
 
-import numpy as np  # noqa: E402
-
-from load_client import THINK_S, UPDATE_TIMEOUT_S  # noqa: E402
+from load_client import THINK_S, UPDATE_TIMEOUT_S
 
 
 #: Tracebacks the server logs when a connection closed while messages were on their way
@@ -188,40 +184,39 @@ def browser_pages(url: str, n: int, duration: float, result: dict) -> None:
     try:
         from playwright.sync_api import sync_playwright
 
-        from tests.browser.page_tools import (measure_slider_latency, settle, slider_handle,
-                                              wait_for_app, wait_for_busy_page_to_pass,
-                                              wait_for_rendered)
-        from tests.browser.serving import VIEWPORT, launch_chromium
-    except ImportError as exc:
+        from checkout import helper
+        tools, serving = helper("browser/page_tools"), helper("browser/serving")
+    except (ImportError, FileNotFoundError) as exc:
         result["errors"] = [f"browser pages unavailable: {exc}"]
         return
     result.update(latencies=[], errors=[], open_s=[], presses=0, peak_rss_mb=0.0)
     with sync_playwright() as pw:
-        browser = launch_chromium(pw)
+        browser = serving.launch_chromium(pw)
         start, cpu0 = time.perf_counter(), chromium_usage()[0]
         try:
             pages = []
             for _ in range(n):
-                page = browser.new_context(viewport=VIEWPORT).new_page()
+                page = browser.new_context(viewport=serving.VIEWPORT).new_page()
                 page.on("pageerror", lambda e: result["errors"].append(f"page error: {e}"))
                 t0 = time.perf_counter()
-                wait_for_app(page, url, timeout_ms=90_000)
+                tools.wait_for_app(page, url, timeout_ms=90_000)
                 # The server's busy page reloads itself until the server admits it.
-                busy = wait_for_busy_page_to_pass(page)
+                busy = tools.wait_for_busy_page_to_pass(page)
                 if busy:
                     result["busy_pages"] = result.get("busy_pages", 0) + busy
-                    wait_for_rendered(page, timeout_ms=90_000)
+                    tools.wait_for_rendered(page, timeout_ms=90_000)
                 opened = time.perf_counter() - t0
                 result["open_s"].append(opened)
-                pages.append((page, slider_handle(page, css_class="ctl-theta0")))
+                pages.append((page, tools.slider_handle(page, css_class="ctl-theta0")))
             for page, _ in pages:
-                settle(page, quiet_ms=300)
+                tools.settle(page, quiet_ms=300)
             start, cpu0 = time.perf_counter(), chromium_usage()[0]  # key presses only
             until, i = time.perf_counter() + duration, 0
             while time.perf_counter() < until:
                 page, handle = pages[i % n]
-                m = measure_slider_latency(page, handle, "ArrowRight" if i % 4 < 2 else "ArrowLeft",
-                                           names=["orbit"], timeout_s=UPDATE_TIMEOUT_S)
+                key = "ArrowRight" if i % 4 < 2 else "ArrowLeft"
+                m = tools.measure_slider_latency(page, handle, key, names=["orbit"],
+                                                 timeout_s=UPDATE_TIMEOUT_S)
                 if math.isfinite(m["change_ms"]):
                     result["latencies"].append(m["change_ms"] / 1e3)
                 else:

@@ -90,21 +90,17 @@ import threading
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
+import numpy as np
 
-import numpy as np  # noqa: E402
-
-from app.pages import RELEASE_DELAY_S  # noqa: E402
-from tests.browser.serving import serve_app  # noqa: E402
-from tests.dockerfile_replay import dockerfile, image_env  # noqa: E402
-from load_client import (CLASS_GAP_S, DRAG_PROBABILITY, PROFILES, THINK_S,  # noqa: E402
+from app.pages import RELEASE_DELAY_S
+from load_client import (CLASS_GAP_S, DRAG_PROBABILITY, PROFILES, THINK_S,
                          UPDATE_TIMEOUT_S)
-from load_class import drive  # noqa: E402
-from load_profile import ServerProfiler, summarise  # noqa: E402
-from load_report import (TARGET_MEMORY_FACTOR, leak_bound, markdown,  # noqa: E402
+from checkout import helper
+from load_class import drive
+from load_profile import ServerProfiler, summarise
+from load_report import (TARGET_MEMORY_FACTOR, leak_bound, markdown,
                          memory_bound, targets)
-from load_probe import (MemorySampler, browser_pages, discarded_sessions,  # noqa: E402
+from load_probe import (MemorySampler, browser_pages, discarded_sessions,
                         log_failures, log_tracebacks, server_pid, settled_rss_mb, tree_cpu_s,
                         wait_for_cleanup, worker_pids)
 
@@ -128,7 +124,8 @@ def server_env(allocator: str = "image") -> dict[str, str]:
         return {"PYTHONMALLOC": "pymalloc", "MALLOC_ARENA_MAX": ""}
     if allocator != "image":
         raise ValueError(f"allocator {allocator!r}: give 'image' or 'python'")
-    env = image_env(dockerfile())
+    replay = helper("dockerfile_replay")
+    env = replay.image_env(replay.dockerfile())
     return {key: env[key] for key in ALLOCATOR_KEYS if key in env}
 
 
@@ -158,9 +155,6 @@ def run(sessions: int = 30, duration: float = 60.0, out: Path | str = "bench-out
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     log_path = out / "load-panel-serve.log"
-    # The checkout under test, whatever is installed.
-    os.environ["PYTHONPATH"] = os.pathsep.join(
-        [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
     client_cpu0 = time.process_time()
     t0, phases = time.perf_counter(), {}
 
@@ -168,6 +162,7 @@ def run(sessions: int = 30, duration: float = 60.0, out: Path | str = "bench-out
         phases[name] = round(time.perf_counter() - t0, 1)
     rounds = []
     extra_env = server_env(allocator)
+    serve_app = helper("browser/serving").serve_app
     with serve_app(log_path, app_dir=app_dir, extra_args=SERVE_ARGS, env=extra_env) as base:
         phase("server up")
         pid = server_pid(int(base.rsplit(":", 1)[1]))

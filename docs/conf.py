@@ -24,7 +24,8 @@ extensions = [
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 root_doc = "index"
 #: docs/upstream holds plain-Panel reproducers of library bugs (scripts, not pages).
-exclude_patterns = ["_build", "upstream", "api/generated/*.md"]
+exclude_patterns = ["_build", "upstream", "api/generated/*.md",
+                    "performance-latest.md"]  # written by benchmarks/run_all.py, included
 
 # MyST: anchors for ## and ### headings, so pages can link to sections (page.md#anchor).
 myst_heading_anchors = 3

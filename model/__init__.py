@@ -11,6 +11,7 @@ the self-consistent contact count (Figs. 5, 6, 8). Conventions: docs/model.md.
 """
 from .fixed import FixedArrayResult, OrientationSweep, fixed_orientation, orientation_sweep
 from .friction import mu, mu0, mu_over_s
+from .friction_compare import FrictionComparison, compare_friction
 from .friction_curve import FrictionCurve, read_curve
 from .friction_fit import FrictionFit, fit_friction
 from .friction_law import FrictionLaw
@@ -24,6 +25,7 @@ from .uniform import UniformArrayResult, uniform_array
 __all__ = ["Params", "REGIMES", "DEFAULTS", "SolverOptions", "METHODS", "simulate_support",
            "SupportResult", "TimeSeries", "IntegrationError", "mu", "mu0", "mu_over_s",
            "FrictionLaw", "FrictionCurve", "read_curve", "FrictionFit", "fit_friction",
+           "compare_friction", "FrictionComparison",
            "fixed_orientation", "orientation_sweep", "uniform_array", "FixedArrayResult",
            "OrientationSweep", "UniformArrayResult", "regime_map", "load_sweep",
            "stiffness_sweep", "orientation_table", "SweepResult", "SweepCancelled"]

@@ -19,7 +19,8 @@ import numpy as np
 from .files import read_user_text
 from .histogram_csv import data_rows, number_cell
 
-__all__ = ["FrictionCurve", "CurveFileError", "read_curve", "speed_factor", "N_COEFFICIENTS"]
+__all__ = ["FrictionCurve", "CurveFileError", "read_curve", "curve_from_text", "speed_factor",
+           "N_COEFFICIENTS"]
 
 #: Coefficients of Eq. (4) that a fit determines: mu_s, A, B and V_s.
 N_COEFFICIENTS = 4
@@ -157,11 +158,17 @@ def read_curve(path, v_unit: str | None = None) -> FrictionCurve:
     >>> float(curve.v[1]), len(curve.mu)
     (0.001, 5)
     """
-    name = Path(path).name
     try:
         text = read_user_text(path, "CSV")
     except ValueError as error:
         raise CurveFileError(str(error)) from None
+    return curve_from_text(text, Path(path).name, v_unit, source=str(path))
+
+
+def curve_from_text(text: str, name: str, v_unit: str | None = None,
+                    source: str = "") -> FrictionCurve:
+    """The friction curve in the CSV ``text`` of the file ``name`` (as ``read_curve``
+    reads a file, e.g. an upload's content); ``CurveFileError`` naming the line."""
     rows = data_rows(text)
     if not rows:
         raise CurveFileError(f"{name}: no header and no data; the first row must name the "
@@ -191,7 +198,7 @@ def read_curve(path, v_unit: str | None = None) -> FrictionCurve:
         i, text = problem
         line = numbers[i] if numbers else rows[-1][0]
         raise CurveFileError(f"{name} line {line}: {text}")
-    return FrictionCurve(v=v * factor, mu=mu, mu_err=err, source=str(path))
+    return FrictionCurve(v=v * factor, mu=mu, mu_err=err, source=source)
 
 
 def _is_number(text: str) -> bool:

@@ -103,6 +103,10 @@ class FrictionFit:
     chi2_reduced: float | None
     warnings: tuple = field(default_factory=tuple)
     nfev: int = 0
+    #: Covariance of (mu_s, A, B, ln V_s) behind the intervals, and the quantile that
+    #: makes their half-widths (None: not kept).
+    covariance: np.ndarray | None = field(default=None, repr=False)
+    quantile: float = math.nan
 
     @property
     def law(self) -> FrictionLaw:
@@ -112,6 +116,24 @@ class FrictionFit:
     def predict(self, v):
         """The fitted mu at speeds ``v`` (m/s)."""
         return self.law.mu(v)
+
+    def band(self, v):
+        """The 95 % confidence band of the fitted curve at speeds ``v`` (m/s): ``(lo, hi)``,
+        mu(v) -+ q sqrt(g^T C g), with g = d mu / d (mu_s, A, B, ln V_s) at ``v`` and C the
+        fit's covariance (the delta method, as the coefficients' intervals); infinite
+        where a coefficient is not determined, NaN without a covariance."""
+        v = np.asarray(v, dtype=float)
+        mu = self.predict(v)
+        if self.covariance is None:
+            return np.full_like(mu, math.nan), np.full_like(mu, math.nan)
+        p = [self.values["mu_s"], self.values["A"], self.values["B"],
+             math.log(self.values["V_s"])]
+        g = _jacobian(p, v.ravel())
+        with np.errstate(invalid="ignore"):
+            var = np.einsum("ij,jk,ik->i", g, self.covariance, g)
+        half = self.quantile * np.sqrt(np.where(np.isnan(var), math.inf, var))
+        half = half.reshape(v.shape)
+        return mu - half, mu + half
 
     def to_dict(self) -> dict:
         """``{"mu_s": {"value", "ci95"}, "A", "B", "V_s" (m/s), "rms_residual",
@@ -225,7 +247,7 @@ def _result(res, curve: FrictionCurve, lo, hi, nfev: int) -> FrictionFit:
     return FrictionFit(success=success, message=message, values=values, ci95=ci95,
                        correlation=correlation, rms_residual=rms, n_points=n,
                        weighted=weighted, chi2_reduced=chi2_reduced,
-                       warnings=tuple(warnings), nfev=nfev)
+                       warnings=tuple(warnings), nfev=nfev, covariance=cov, quantile=float(q))
 
 
 def _undetermined(values, ci95, half, active, curve, rss, lo, hi) -> list:

@@ -23,7 +23,7 @@ __all__ = ["simulate_support"]
 
 def simulate_support(params: Params, rtol: float = 1e-6, atol: float | None = None,
                      method: str = "auto", samples: int = 0, max_steps: int = 1_000_000,
-                     tau_max: float = 1e5) -> SupportResult:
+                     tau_max: float = 1e5, cache: bool = True) -> SupportResult:
     """Integrate one contact of a support with the slab, from rest until exit (Eq. 9).
 
     The motion (Eqs. 5-6) and the quadratures of the slab work, the dissipations and the
@@ -50,13 +50,17 @@ def simulate_support(params: Params, rtol: float = 1e-6, atol: float | None = No
         Step budget (accepted and rejected steps).
     tau_max : float, default 1e5
         Time budget in tau. When a budget runs out the result has ``success=False``.
+    cache : bool, default True
+        Reuse the result of an identical earlier call (an LRU cache of 1024 results, by
+        parameters and settings). ``False`` integrates afresh and leaves the cache as it
+        was: what a benchmark times.
 
     Returns
     -------
     SupportResult
         Contact duration, mean friction over f_N, energies in m V0^2 and the energy
-        residual; call ``.check()`` to raise ``IntegrationError`` on failure. Results are
-        cached (LRU) by parameters and settings; their arrays are read-only.
+        residual; call ``.check()`` to raise ``IntegrationError`` on failure. Its arrays
+        are read-only (a cached result is shared).
 
     See Also
     --------
@@ -75,16 +79,20 @@ def simulate_support(params: Params, rtol: float = 1e-6, atol: float | None = No
     True
     >>> simulate_support(REGIMES["pendulum"], samples=50).series.tau.shape
     (50,)
+    >>> simulate_support(REGIMES["pendulum"], cache=False) is result  # computed afresh
+    False
     """
     instance("params", params, Params)
+    if not isinstance(cache, bool):
+        raise TypeError(f"cache must be True or False, not {cache!r}")
     samples = whole("samples", samples, 0, 10**6)
     options = SolverOptions(rtol=rtol, atol=atol, method=method, max_steps=max_steps,
                             tau_max=tau_max)
-    return _simulate(params, options, int(samples))
+    return (_simulate if cache else _integrate)(params, options, int(samples))
 
 
-@lru_cache(maxsize=1024)
-def _simulate(params: Params, options: SolverOptions, samples: int) -> SupportResult:
+def _integrate(params: Params, options: SolverOptions, samples: int) -> SupportResult:
+    """The contact's result, computed (``_simulate``: the same, cached)."""
     if options.method == "reference":
         status, t, y, stats, r_min, r_max, sol = integrate_reference(params, options,
                                                                      dense=samples > 0)
@@ -111,6 +119,9 @@ def _simulate(params: Params, options: SolverOptions, samples: int) -> SupportRe
                      float(y[S.W]), float(y[S.D_X]), float(y[S.D_Y]), U_el, K, residual,
                      dtheta_rms, dr_rms, min(float(r_min[0]), r_out), max(float(r_max[0]), r_out),
                      stats, series)
+
+
+_simulate = lru_cache(maxsize=1024)(_integrate)
 
 
 @lru_cache(maxsize=1024)

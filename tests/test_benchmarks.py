@@ -1,5 +1,8 @@
 """The benchmark scripts run (``--quick``) so they cannot rot; their reports are checked."""
 import json
+import os
+import re
+import shutil
 import struct
 import subprocess
 import sys
@@ -79,19 +82,29 @@ def test_arrays_benchmark_quick(tmp_path):
     assert report.count("ms median [min–max]") == 2 and "trajectories/s in one batch" in report
 
 
-@pytest.mark.slow
-def test_run_all_dashboard_server_side(tmp_path):
-    """run_all.py runs a script and totals its time; the dashboard table has min/max."""
+@pytest.fixture(scope="module")
+def dashboard_run(tmp_path_factory):
+    """One quick ``run_all.py`` of the dashboard's server side, with its report: (folder,
+    the printed output, the report's text). Shared by the tests below."""
+    out = tmp_path_factory.mktemp("run_all")
     done = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "run_all.py"), "--quick",
-                           "--no-browser", "--only", "bench_dashboard.py", "--out", str(tmp_path)],
+                           "--no-browser", "--only", "bench_dashboard.py", "--out", str(out),
+                           "--report", str(out / "report.md")],
                           cwd=ROOT, capture_output=True, text=True, timeout=900)
     assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
-    summary = json.loads((tmp_path / "run_all.json").read_text())
+    return out, done.stdout, (out / "report.md").read_text()
+
+
+@pytest.mark.slow
+def test_run_all_dashboard_server_side(dashboard_run):
+    """run_all.py runs a script and totals its time; the dashboard table has min/max."""
+    out, stdout, _ = dashboard_run
+    summary = json.loads((out / "run_all.json").read_text())
     assert list(summary["scripts"]) == ["bench_dashboard.py"]
-    assert summary["total"]["wall_s"] > 0 and "total" in done.stdout
-    report = (tmp_path / "dashboard.md").read_text()
+    assert summary["total"]["wall_s"] > 0 and "total" in stdout
+    report = (out / "dashboard.md").read_text()
     assert "median ms [min–max]" in report and "| support view compute |" in report
-    data = json.loads((tmp_path / "dashboard.json").read_text())
+    data = json.loads((out / "dashboard.json").read_text())
     for s in data["server"].values():
         assert _spread_ok(s["min_ms"], s["p50_ms"], s["max_ms"])
     cost = data["server_cost"]
@@ -100,6 +113,63 @@ def test_run_all_dashboard_server_side(tmp_path):
         assert payload["binary_kB"] > payload["json_kB"] > 0  # the arrays travel as binary
         assert cost[f"{move} move: update + patch"]["p50_ms"] > 0
     assert "binary buffers" in report
+
+
+def _row(report: str, name: str) -> list[str]:
+    line = next(ln for ln in report.splitlines() if ln.startswith(f"| {name} |"))
+    return [c.strip() for c in line.strip("|").split("|")]
+
+
+@pytest.mark.slow
+def test_report_gives_the_machine_date_load_and_spreads_of_the_run(dashboard_run):
+    """``--report`` writes a page from the run's JSON: the machine and versions, the date,
+    the load around each script, and each figure as median [min–max] from that run."""
+    out, _, report = dashboard_run
+    summary = json.loads((out / "run_all.json").read_text())
+    machine, run = summary["machine"], summary["scripts"]["bench_dashboard.py"]
+    assert f"on {machine['date']} in **quick** mode" in report
+    assert f"machine: {machine['cpu']}, {machine['cores']} cores" in report
+    for lib in ("python", "numpy", "numba", "panel"):
+        assert f"{lib} {machine[lib]}" in report
+    load = " / ".join(f"{v:.2f}" for v in run["loadavg_before"])
+    assert _row(report, "bench_dashboard.py")[3] == load
+    assert f"load average {load} before" in report
+    data = json.loads((out / "dashboard.json").read_text())
+    for name, s in data["server"].items():  # the page's figures are the JSON's
+        assert _row(report, name)[2] == f"{s['p50_ms']:.1f} [{s['min_ms']:.1f}–{s['max_ms']:.1f}]"
+
+
+@pytest.mark.slow
+def test_report_takes_no_figure_from_an_earlier_run(dashboard_run, tmp_path):
+    """A benchmark's JSON older than the run (left over in the folder) gives no figures."""
+    out, _, report = dashboard_run
+    shutil.copytree(out, tmp_path / "run")
+    json_path = tmp_path / "run" / "dashboard.json"
+    started = json.loads((tmp_path / "run" / "run_all.json").read_text())[
+        "scripts"]["bench_dashboard.py"]["started"]
+    os.utime(json_path, (started - 60, started - 60))
+    done = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "report.py"),
+                           str(tmp_path / "run"), str(tmp_path / "stale.md")],
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-2000:]
+    stale = (tmp_path / "stale.md").read_text()
+    assert "No figures: `bench_dashboard.py` wrote no `dashboard.json` during this run." in stale
+    assert "| support view compute |" in report and "| support view compute |" not in stale
+
+
+#: Ways a script would put the repository on the import path, or reach past a cache.
+_PATH_EDITS = re.compile(r"sys\.path\s*(\.(insert|append|extend)|\[|=|\+=)|"
+                         r"environ\[[\"']PYTHONPATH|PYTHONPATH[\"']\s*:|noqa: E402|__wrapped__")
+
+
+def test_no_benchmark_edits_the_import_path():
+    """The benchmarks import the installed package: none edits ``sys.path`` or the
+    ``PYTHONPATH`` of its children, and none calls a cached function's ``__wrapped__``."""
+    scripts = sorted((ROOT / "benchmarks").glob("*.py"))
+    assert len(scripts) > 20
+    found = [f"{p.name}:{i}: {line.strip()}" for p in scripts
+             for i, line in enumerate(p.read_text().splitlines(), 1) if _PATH_EDITS.search(line)]
+    assert not found, "\n".join(found)
 
 
 def test_busy_core_runs_the_command_beside_a_spinning_process():
@@ -143,3 +213,6 @@ def test_friction_fit_benchmark_quick(tmp_path):
         s = r["seconds"]
         assert _spread_ok(s["min"], s["median"], s["max"]) and r["converged"] == r["runs"]
     assert data["speeds"]["n"] == 5 and data["speeds"]["success"]
+    t = data["speeds"]["seconds"]
+    assert _spread_ok(t["min"], t["median"], t["max"]) and t["n"] == 2
+    assert "median [min–max] over 2 runs" in report

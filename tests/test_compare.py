@@ -18,8 +18,8 @@ from hypothesis import strategies as st
 from app import results as results_module
 from app.state import ExplorerState
 from app.pinned_state import PINNED_ALL, PINNED_KEYS, parse_pinned, pinned_text
-from app.urlstate import (BETA_BOUNDS, F_N_BOUNDS, K_BOUNDS, RTOLS, parse, serialize,
-                          to_search)
+from app.urlstate import (BETA_BOUNDS, F_N_BOUNDS, K_BOUNDS, MAX_PINNED_CHARS, RTOLS, parse,
+                          serialize, to_search)
 
 PINNED = dict(k_r=0.5, k_theta=0.2, F_N=1.0, theta0=60.0, rtol=1e-6, beta_mode="self",
               beta=1.0)
@@ -83,7 +83,7 @@ def test_a_garbled_pinned_state_gives_a_notice_and_pins_nothing(junk):
 
 
 def test_an_over_long_pinned_state_is_refused_unread():
-    values, notices = parse({"A": "k_r:0.5," * 130})  # over MAX_PINNED_CHARS
+    values, notices = parse({"A": "k_r:0.5," * (MAX_PINNED_CHARS // 8 + 1)})  # one too many
     assert "pinned" not in values and "too long" in notices[0]
 
 

@@ -17,12 +17,14 @@ ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOKS = sorted((ROOT / "examples").glob("*.ipynb"))
 #: Seconds one notebook may take (each runs in a few seconds on a quiet 2-core machine).
 BUDGET_S = 120
-#: What Bokeh's ``show`` leaves in a notebook's outputs.
+#: What Bokeh's ``show`` and a displayed HoloViews element leave in a notebook's outputs.
 BOKEH_MIME = "application/vnd.bokehjs_exec.v0+json"
+HOLOVIEWS_MIME = "application/vnd.holoviews_exec.v0+json"
 
 
 def test_the_examples_are_there():
-    assert {p.name for p in NOTEBOOKS} >= {"api_tour.ipynb", "design_study.ipynb"}
+    assert {p.name for p in NOTEBOOKS} >= {"api_tour.ipynb", "design_study.ipynb",
+                                           "lab_friction.ipynb"}
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.name)
@@ -52,7 +54,7 @@ def test_the_notebook_executes(path, monkeypatch):
     assert not [o for o in outputs if o.output_type == "error"]
     text = "".join(o.get("text", "") for o in outputs if o.output_type == "stream")
     assert "Traceback" not in text and text.strip(), f"{path.name} printed nothing"
-    figures = [o for o in outputs if BOKEH_MIME in o.get("data", {})]
+    figures = [o for o in outputs if {BOKEH_MIME, HOLOVIEWS_MIME} & set(o.get("data", {}))]
     assert figures, f"{path.name}: no figure was displayed"
 
 

@@ -154,6 +154,21 @@ def test_the_headline_is_the_dashboards_sentence():
         assert text == readouts.headline_text(*case), case
 
 
+def test_uniform_readout_is_the_dashboards_table():
+    readouts = pytest.importorskip("app.views.readouts")  # imports Panel
+    from app.figures.arrays import AVERAGE_COLUMNS
+    from app.texts import AVERAGE_NAMES, FELT_AVERAGE
+    row = dict(FTx_over_mu0FN=0.91141693, FTx_over_mu0FN_duration=0.8449153, Dy_over_Dx=0.0499119,
+               Nc_over_Nc0=3.01525442, quadrature_error_FTx=3.3e-4, success=True, n_failed=0)
+    cases = [(row, "paper", ""), (row, "duration", ""), (None, "paper", "being computed"),
+             (None, "duration", ""), ({**row, "success": False, "n_failed": 3, "Dy_over_Dx": None},
+                                      "paper", "")]
+    extra = [AVERAGE_NAMES, AVERAGE_COLUMNS, FELT_AVERAGE]
+    got = js([("V", "uniformMarkdown", [*c, *extra]) for c in cases])
+    for case, text in zip(cases, got):
+        assert text == readouts.uniform_markdown(*case), case
+
+
 def test_the_page_holds_the_shipped_maps_and_the_dashboards_player():
     support = pytest.importorskip("app.views.support")  # imports Panel
     assert offline_figures.N_FRAMES == support.N_FRAMES

@@ -193,6 +193,22 @@ def test_results_are_cached_and_read_only():
         a.state_out[0] = 1.0
 
 
+def test_uncached_call_computes_afresh_and_leaves_the_cache_alone():
+    """``cache=False`` (what the benchmarks time) integrates again, to the same result, and
+    neither reads nor fills the cache."""
+    p = REGIMES["slider"].replace(theta0=0.7)
+    fresh = simulate_support(p, rtol=1e-7, cache=False)
+    again = simulate_support(p, rtol=1e-7, cache=False)
+    assert fresh is not again and fresh.t_out == again.t_out
+    np.testing.assert_array_equal(fresh.state_out, again.state_out)
+    cached = simulate_support(p, rtol=1e-7)
+    assert cached is not fresh and cached.t_out == fresh.t_out
+    assert simulate_support(p, rtol=1e-7, cache=False) is not cached
+    assert simulate_support(p, rtol=1e-7) is cached
+    with pytest.raises(TypeError, match="cache must be True or False, not 'no'"):
+        simulate_support(p, cache="no")
+
+
 def test_to_dict_has_documented_keys():
     d = simulate_support(REGIMES["pendulum"]).to_dict()
     for key in ("t_out", "state_out", "F_mean_x", "F_mean_y", "W", "D_x", "D_y", "U_el", "K",

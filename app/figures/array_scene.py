@@ -190,8 +190,8 @@ def array_scene(motion, player, width: int = 1000, panel_height: int = 220,
         ("dot", "#333333", "solid", 0, "mass")]) + "<br>" + (
         "Each support is coloured by the direction of the friction force on it "
                     "(arrow): <b>dark</b> along the sliding direction, <b style='color:#0072B2'>"
-                    "blue</b> turned towards +y, <b style='color:#C47F00'>orange</b> towards −y, "
-                    "<b style='color:#999'>grey</b> not in contact. Released supports are drawn "
+                    "blue</b> turned towards +y, <b style='color:#9E6600'>orange</b> towards −y, "
+                    "<b style='color:#767676'>grey</b> not in contact. Released supports are drawn "
                     "at rest."), width=width, name="array_key", styles={"font-size": TEXT_SIZE})
     parts = [readout, fig, colorbar, key, panel, panel_key]
     if responsive:

@@ -19,7 +19,9 @@ The slider and readout are DOM elements whose updates cost layout work; while pl
 they follow at most every ``UI_MS`` ms, the figures every frame.
 Keyboard: Space play/pause, <- -> one frame, Up/Down faster/slower, Home first frame,
 L loop. The keys go to the player last used (or last made ready) and are ignored while an
-input, select or text area has the focus.
+input, select or text area has the focus; Space and Enter on a focused button press that
+button. Autoplay is skipped when the reader asked for less motion
+(``prefers-reduced-motion: reduce``); Play still starts the player.
 """
 from __future__ import annotations
 
@@ -93,13 +95,17 @@ if (st === undefined) {
     speed.value = values[Math.min(values.length - 1, Math.max(0, k + d))];
   };
   st.key = (e) => {
-    const tag = (e.target && e.target.tagName) || "";
+    // The element the key is for (inside a widget's shadow root, not its host).
+    const path = e.composedPath ? e.composedPath() : [];
+    const target = path[0] || e.target;
+    const tag = (target && target.tagName) || "";
     if (["INPUT", "SELECT", "TEXTAREA"].includes(tag) || e.altKey || e.ctrlKey || e.metaKey) return;
     // Keys on a slider move the slider, not the animation.
-    const path = e.composedPath ? e.composedPath() : [];
     if (path.some((el) => el && el.getAttribute && (el.getAttribute("role") === "slider" ||
         (el.classList && el.classList.contains("noUi-handle"))))) return;
     const k = e.key;
+    // Space and Enter press the focused button (a tab, a preset), never the player's.
+    if (["BUTTON", "A", "SUMMARY"].includes(tag) && [" ", "Spacebar", "Enter"].includes(k)) return;
     if (k === " " || k === "Spacebar") play.active = !play.active;
     else if (k === "ArrowRight") st.step(1);
     else if (k === "ArrowLeft") st.step(-1);
@@ -263,8 +269,10 @@ def browser_player(n_frames: int, times=None, fps: float = 30.0, autoplay: bool 
     # Autoplay. In a page sent in a patch, BokehJS draws the views over several turns, and
     # the play button's view throws on a change before it is drawn: then try again soon.
     ready_js = CustomJS(args=dict(**args, autoplay=bool(autoplay)), code=_PRELUDE + """
+        // A reader who asked the system for less motion starts the player by hand.
+        const still = window.matchMedia && matchMedia("(prefers-reduced-motion: reduce)").matches;
         const go = () => {
-          if (!autoplay || play.active) return;
+          if (!autoplay || still || play.active) return;
           try { play.active = true; }
           catch (error) { play.setv({active: false}, {silent: true}); st.stop(); setTimeout(go, 100); }
         };

@@ -9,18 +9,4 @@
 "use strict";
 const kernel = require("./kernel.js");
 
-let text = "";
-process.stdin.setEncoding("utf8");
-process.stdin.on("data", (chunk) => { text += chunk; });
-process.stdin.on("end", () => {
-  const inputs = JSON.parse(text);
-  const results = inputs.map((input) => {
-    try {
-      return kernel.simulate(input);
-    } catch (error) {
-      return {error: error.message};
-    }
-  });
-  process.stdout.write(JSON.stringify(results, (key, value) =>
-    (value instanceof Float64Array ? Array.from(value) : value)));
-});
+require("./node_io.js")((input) => kernel.simulate(input));

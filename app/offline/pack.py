@@ -20,8 +20,10 @@ from __future__ import annotations
 import json
 import math
 import re
+from functools import lru_cache
 from importlib import resources
 from pathlib import Path
+from urllib.parse import urlencode
 
 from bokeh.document import Document
 from bokeh.embed import file_html
@@ -34,53 +36,75 @@ from model.controls import CONTROLS, DEFAULT_REGIME
 from model.friction import mu0
 from model.params import REGIMES
 
-from ..texts import MECHANISMS
+from ..figures.arrays import AVERAGE_COLUMNS
+from ..texts import AVERAGE_NAMES, FELT_AVERAGE, MECHANISMS
 from ..urlstate import TABS
+from ..worker import UNIFORM_TOL
 from . import figures as views
 
-__all__ = ["page_html", "write", "config", "MAX_BYTES", "OFFLINE_TABS"]
+__all__ = ["page_html", "page_bytes", "write", "config", "initial_fragment", "MAX_BYTES",
+           "OFFLINE_TABS", "FRAGMENT_KEYS"]
 
 #: The page's size bound (the issue's target): BokehJS inlined is most of it.
 MAX_BYTES = 5 * 1024 * 1024
 #: The tabs of the dashboard the offline page shows (the others say they are not in it yet).
 OFFLINE_TABS = ("support", "polar", "map")
 TITLE = "Micropillar friction explorer (offline)"
+#: The page's scripts (app/offline/*.js), in loading order.
+SCRIPTS = ("kernel", "solvers", "arrays", "fragment", "jobs", "views", "page")
 
-_SLIDERS = (  # (control, fragment key, title, log scale)
+_SLIDERS = (  # (control, fragment key, title, log scale or the linear step)
     ("k_r", "k_r", "k_r: radial stiffness (Eq. 5)", True),
     ("k_theta", "k_theta", "k_θ: torsional stiffness (Eq. 5)", True),
     ("F_N", "F_N", "F_N: normal load", True),
-    ("theta0_deg", "theta0_deg", "θ₀: rest orientation [deg]", False),
+    ("theta0_deg", "theta0_deg", "θ₀: rest orientation [deg]", 1),
+    ("beta", "beta", "β: the fixed load factor N_c0/N_c (with “fixed β”)", 0.001),
 )
+#: The load factor's modes (``beta_mode``, the dashboard's): label of each.
+BETA_MODES = {"self": "self-consistent β = L0/⟨τ_out⟩ (the dashboard's default)",
+              "fixed": "fixed β (the slider below)"}
+#: A dashboard tab the page does not have: the tab it opens instead, and what that shows.
+CLOSEST_TABS = {
+    "array": ("polar", "the polar tab (fixed arrays, Fig. 11), with the uniform array's "
+                       "readout beside the controls; the array under the slab needs the server"),
+    "load": ("map", "the regime maps (uniform arrays) at the shipped loads; the load curves "
+                    "(Fig. 6) need the server"),
+}
 
 
 #: What the page leaves to the server (docs/offline.md says why).
-MISSING = ("Not in this offline page: the uniform array with its self-consistent β (and "
-           "so the headline's average over all orientations), the array view, the load "
-           "curves, the equations, the design tab, pinning a state, the lesson. Every "
-           "support here carries β = 1 (no contact-count correction). Run "
-           "<code>panel serve app</code> for the full explorer.")
-#: The headline's clause for the uniform array, which the offline page does not compute.
-UNIFORM_NOTE = "needs the server (panel serve app)"
+MISSING = ("Not in this offline page: the array view, the load curves (Fig. 6), regime "
+           "maps at new loads, the equations, the design tab, pinning a state, animation "
+           "export. Run <code>panel serve app</code> for the full explorer.")
+#: The headline's clause for a uniform array that could not be computed.
+UNIFORM_FAILED_NOTE = "not computed (see the uniform array's readout)"
 POLAR_CAPTION = ("Fixed-orientation arrays (every support at the same θ₀) for the current "
                  "springs and load, 72 orientations on [0°, 180°] mirrored (y → −y), each "
-                 "support with β = 1; computed in this page. Click a diagram to set θ₀.")
+                 "at the load factor β of the controls (self-consistent: solved for each "
+                 "orientation); computed in this page. Click a diagram to set θ₀.")
 
 
 def config() -> dict:
     """What the page needs from the model: controls, regimes, mu0, tabs (as JSON)."""
     controls = {}
-    for name, key, title, log in _SLIDERS:
+    for name, key, title, scale in _SLIDERS:
         control = CONTROLS[name]
         interval = control.interval
         controls[key] = dict(lo=interval.lo, hi=interval.hi, hi_open=interval.hi_open,
-                             default=control.default, log=log, title=title,
+                             default=control.default, log=scale is True,
+                             step=None if scale is True else scale, title=title,
                              meaning=control.meaning, expected=control.expected())
+    mode = CONTROLS["beta_mode"]
     regimes = {name: dict(k_r=p.k_r, k_theta=p.k_theta, title=MECHANISMS[name][0])
                for name, p in REGIMES.items()}
     return dict(controls=controls, regimes=regimes, default_regime=DEFAULT_REGIME,
                 mu0=mu0(), tabs=list(TABS), offline_tabs=list(OFFLINE_TABS),
-                uniform_note=UNIFORM_NOTE, **views.constants())
+                closest_tabs={k: dict(tab=t, why=w) for k, (t, w) in CLOSEST_TABS.items()},
+                beta_mode=dict(default=mode.default, choices=list(mode.choices),
+                               expected=mode.expected()),
+                uniform_tol=UNIFORM_TOL, uniform_failed_note=UNIFORM_FAILED_NOTE,
+                felt_average=FELT_AVERAGE, average_names=AVERAGE_NAMES,
+                average_columns=AVERAGE_COLUMNS, **views.constants())
 
 
 def _slider(key: str, title: str, spec: dict) -> Slider:
@@ -91,8 +115,9 @@ def _slider(key: str, title: str, spec: dict) -> Slider:
         slider = Slider(start=lo, end=hi, value=math.log10(spec["default"]), step=0.01,
                         title=title, format=fmt, name=f"slider-{key}")
     else:  # theta0 in [0, 360): the slider stops at 359
-        slider = Slider(start=spec["lo"], end=spec["hi"] - 1, value=spec["default"], step=1,
-                        title=title, name=f"slider-{key}")
+        step = spec["step"]
+        slider = Slider(start=spec["lo"], end=spec["hi"] - step if spec["hi_open"] else spec["hi"],
+                        value=spec["default"], step=step, title=title, name=f"slider-{key}")
     slider.js_on_change("value", CustomJS(
         args=dict(key=key), code="if (window.explorer) window.explorer._slider(key, cb_obj.value);"))
     slider.sizing_mode = "stretch_width"
@@ -150,6 +175,13 @@ def _map_titles() -> dict:
 def _layout(cfg: dict, figs: dict, polar: dict, regime_map):
     controls = cfg["controls"]
     sliders = [_slider(key, title, controls[key]) for _, key, title, _ in _SLIDERS]
+    beta_mode = Select(title="load factor β = N_c0/N_c", value=cfg["beta_mode"]["default"],
+                       options=list(BETA_MODES.items()), name="beta-mode",
+                       sizing_mode="stretch_width")
+    beta_mode.js_on_change("value", CustomJS(
+        code="if (window.explorer) window.explorer._betaMode(cb_obj.value);"))
+    uniform = Div(text="", name="uniform-readout", sizing_mode="stretch_width",
+                  styles={"font-size": "0.9em"})
     presets = []
     for name, regime in cfg["regimes"].items():
         button = Button(label=name, name=f"preset-{name}", button_type="default",
@@ -170,9 +202,9 @@ def _layout(cfg: dict, figs: dict, polar: dict, regime_map):
     projector.js_on_change("active", CustomJS(
         code="if (window.explorer) window.explorer._projector(cb_obj.active);"))
     missing = Div(text=MISSING, name="missing", styles={"color": "#555555", "font-size": "0.85em"})
-    side = column([number, notice, row(presets, sizing_mode="stretch_width",
-                                                 styles={"flex-wrap": "wrap"}),
-                   *sliders, status, projector, missing], sizing_mode="stretch_width",
+    side = column([number, uniform, notice, row(presets, sizing_mode="stretch_width",
+                                                          styles={"flex-wrap": "wrap"}),
+                   *sliders[:4], beta_mode, sliders[4], status, projector, missing], sizing_mode="stretch_width",
                   min_width=280, max_width=400, name="side")
     tabs = Tabs(tabs=[TabPanel(child=_support_tab(figs), title="Support", name="tab-support"),
                       TabPanel(child=_polar_tab(polar), title="Polar (Fig. 11)",
@@ -209,8 +241,33 @@ def _without_fetches(html: str) -> str:
     return _FETCH.sub("", html)
 
 
-def page_html() -> str:
-    """The whole page: Bokeh's document with BokehJS inlined, the kernel and the page code."""
+#: The keys of a dashboard link the offline page reads (its fragment, fragment.js); a
+#: session's other settings (rtol, the averages, the Design tab's inputs...) need the server.
+FRAGMENT_KEYS = ("regime", "k_r", "k_theta", "F_N", "theta0_deg", "beta", "tab", "projector",
+                 "play")
+
+
+def initial_fragment(query: dict) -> str:
+    """The fragment the page opens in for a dashboard link's ``query`` (app.urlstate's keys):
+    the keys it reads, in order (``#k_r=3&k_theta=0.01&...``); "" for none."""
+    kept = [(k, str(query[k])) for k in FRAGMENT_KEYS if k in query]
+    return "#" + urlencode(kept) if kept else ""
+
+
+def page_html(fragment: str = "") -> str:
+    """The whole page: Bokeh's document with BokehJS inlined, the kernel and the page code;
+    it opens in the state of ``fragment`` (``#k_r=3&...``: a link's own fragment wins)."""
+    if fragment and not fragment.startswith("#"):
+        raise ValueError(f"fragment={fragment[:40]!r} must start with '#' (e.g. '#k_r=3')")
+    html = _base_page()
+    at = html.rfind('<script id="mp-config"')  # before the page's scripts, which read it
+    return (html[:at] + _script("mp-initial", json.dumps(fragment).replace("</", "<\\/"),
+                                "application/json") + html[at:])
+
+
+@lru_cache(maxsize=1)
+def _base_page() -> str:
+    """The page without its initial state (built once per process: ~1 s)."""
     cfg = config()
     figs, polar, regime_map = views.support_figures(), views.polar_figures(), views.map_figure()
     cfg["maps"] = views.maps()
@@ -225,7 +282,7 @@ def page_html() -> str:
     here = resources.files(__package__)
     extra = (_script("mp-config", json.dumps(cfg).replace("</", "<\\/"), "application/json")
              + "".join(_script(f"mp-{name}", (here / f"{name}.js").read_text(encoding="utf-8"))
-                       for name in ("kernel", "views", "page")))
+                       for name in SCRIPTS))
     head_extra = ('<meta name="viewport" content="width=device-width, initial-scale=1">\n'
                   '<meta http-equiv="Content-Security-Policy" content="default-src \'none\'; '
                   'script-src \'unsafe-inline\' \'unsafe-eval\' blob:; worker-src blob:; '
@@ -239,13 +296,20 @@ def page_html() -> str:
     return html[:head] + "\n" + head_extra + html[head:body] + extra + html[body:]
 
 
-def write(path) -> int:
-    """Write the offline explorer to ``path``; returns its size in bytes.
-
-    Raises ``ValueError`` when the page would exceed ``MAX_BYTES``."""
-    html = page_html().encode("utf-8")
+def page_bytes(fragment: str = "") -> bytes:
+    """``page_html(fragment)`` as UTF-8; ``ValueError`` when over ``MAX_BYTES``."""
+    html = page_html(fragment).encode("utf-8")
     if len(html) > MAX_BYTES:
         raise ValueError(f"the offline page is {len(html):,} bytes, over the bound of "
                          f"{MAX_BYTES:,}")
+    return html
+
+
+def write(path, fragment: str = "") -> int:
+    """Write the offline explorer to ``path`` (opening in ``fragment``'s state); returns
+    its size in bytes.
+
+    Raises ``ValueError`` when the page would exceed ``MAX_BYTES``."""
+    html = page_bytes(fragment)
     Path(path).write_bytes(html)
     return len(html)

@@ -1,15 +1,18 @@
-/* The offline explorer's page: controls -> state (mirrored in the URL fragment) -> the
- * JavaScript kernel (in a Web Worker) -> Bokeh's data sources and the headline.
+/* The offline explorer's page: controls -> state (mirrored in the URL fragment,
+ * fragment.js) -> the JavaScript kernel and arrays (arrays.js, in three Web Workers) ->
+ * Bokeh's data sources, the headline and the uniform array's readout.
  *
  * window.explorer is the page's API (docs/offline.md):
  *   explorer.simulate({k_r, k_theta, F_N, theta0, beta, rtol, ...}) -> one contact, the
  *       quantities of `micropillar support --json` (synchronous, on the calling thread);
- *   explorer.state   -> the current state {k_r, k_theta, F_N, theta0_deg, tab};
+ *   explorer.state   -> the current state {k_r, k_theta, F_N, theta0_deg, beta_mode, beta, tab, ...};
  *   explorer.set({k_r: 0.5, ...}) -> change the state (as the sliders do) and redraw;
  *   explorer.preset("slider") -> a regime's springs;
  *   explorer.result  -> the last drawn result; explorer.drawn counts the redraws;
  *   explorer.ready   -> a Promise resolved at the first drawn plot;
- *   explorer.polar   -> the last orientation sweep drawn (Fig. 11), explorer.polarDrawn.
+ *   explorer.polar   -> the last orientation sweep drawn (Fig. 11), explorer.polarDrawn;
+ *   explorer.uniform -> the last uniform array drawn (its ``key``: k_r,k_theta,F_N,beta),
+ *       explorer.uniformDrawn.
  * Reads its configuration (ranges, defaults, regimes: from the Python model at pack time)
  * from the JSON element #mp-config and the kernel from #mp-kernel.
  */
@@ -19,80 +22,15 @@
   var KERNEL = window.MicropillarKernel;
   var VIEWS = window.MicropillarViews;
   var CONTROLS = CONFIG.controls;
-  var KEYS = ["k_r", "k_theta", "F_N", "theta0_deg"];
-  var FLAGS = ["projector", "play"];  // 0 or 1 in the link
   var MAX_STEPS = 1000000;
-  var RESTART_AFTER_MS = 300;   // a newer request stops a computation older than this
 
   // ------------------------------------------------------------ state and fragment
-  function defaults() {
-    var s = {tab: "support", projector: false, play: false};
-    KEYS.forEach(function (k) { s[k] = CONTROLS[k].default; });
-    return s;
-  }
-  var state = defaults();
-
-  function inRange(key, x) {
-    var c = CONTROLS[key];
-    return isFinite(x) && x >= c.lo && (c.hi_open ? x < c.hi : x <= c.hi);
-  }
-
-  /** The state a fragment asks for, and a notice for every value it could not use. */
-  function parseFragment(hash) {
-    var s = defaults(), notices = [];
-    var text = (hash || "").replace(/^#/, "");
-    if (!text) return {state: s, notices: notices};
-    var pairs = text.split("&"), given = {};
-    pairs.forEach(function (pair) {
-      if (!pair) return;
-      var i = pair.indexOf("="), key, value;
-      try {
-        key = decodeURIComponent(i < 0 ? pair : pair.slice(0, i));
-        value = i < 0 ? "" : decodeURIComponent(pair.slice(i + 1).replace(/\+/g, " "));
-      } catch (error) {
-        notices.push("could not read “" + pair.slice(0, 40) + "” in the link: ignored");
-        return;
-      }
-      given[key] = value;
-    });
-    if (given.regime !== undefined) {
-      var regime = CONFIG.regimes[given.regime];
-      if (regime) { s.k_r = regime.k_r; s.k_theta = regime.k_theta; }
-      else notices.push("regime=" + given.regime.slice(0, 40) + " is not a regime (one of " +
-                        Object.keys(CONFIG.regimes).join(", ") + "): kept the default springs");
-    }
-    Object.keys(given).forEach(function (key) {
-      var value = given[key];
-      if (key === "regime") return;
-      if (KEYS.indexOf(key) >= 0) {
-        var x = value.trim() === "" || value.length > 100 ? NaN : Number(value);
-        if (inRange(key, x)) s[key] = x;
-        else notices.push(key + "=" + value.slice(0, 40) + " is not " + CONTROLS[key].expected +
-                          ": using the default " + CONTROLS[key].default);
-      } else if (FLAGS.indexOf(key) >= 0) {
-        if (value === "1" || value === "0") s[key] = value === "1";
-        else notices.push(key + "=" + value.slice(0, 40) + " is not 0 or 1: ignored");
-      } else if (key === "tab") {
-        if (CONFIG.tabs.indexOf(value) < 0) {
-          notices.push("tab=" + value.slice(0, 40) + " is not a tab (one of " + CONFIG.tabs.join(", ") +
-                       "): showing the support");
-        } else if (CONFIG.offline_tabs.indexOf(value) < 0) {
-          notices.push("the " + value + " tab is not in the offline explorer (it needs the server): " +
-                        "showing the support");
-        } else s.tab = value;
-      } else {
-        notices.push(key.slice(0, 40) + " is not a setting of the offline explorer: ignored");
-      }
-    });
-    return {state: s, notices: notices};
-  }
-
-  function fragment(s) {
-    var parts = KEYS.map(function (k) { return k + "=" + Number(s[k].toPrecision(6)); });
-    if (s.tab && s.tab !== "support" && CONFIG.offline_tabs.indexOf(s.tab) >= 0) parts.push("tab=" + s.tab);
-    if (s.projector) parts.push("projector=1");
-    return "#" + parts.join("&");
-  }
+  var FRAGMENT = window.MicropillarFragment;
+  var KEYS = FRAGMENT.KEYS;
+  function parseFragment(hash) { return FRAGMENT.parse(hash, CONFIG); }
+  function fragment(s) { return FRAGMENT.write(s, CONFIG); }
+  function inRange(key, x) { return FRAGMENT.inRange(CONFIG, key, x); }
+  var state = FRAGMENT.defaults(CONFIG);
 
   // ------------------------------------------------------------ Bokeh models
   // Figures and their sources share names (the dashboard's "forces", "polar_FTx"): a
@@ -126,6 +64,7 @@
       var tab = Math.max(0, CONFIG.offline_tabs.indexOf(state.tab));
       if (model("tabs").active !== tab) model("tabs").active = tab;
       if (model("projector").active !== state.projector) model("projector").active = state.projector;
+      if (model("beta-mode").value !== state.beta_mode) model("beta-mode").value = state.beta_mode;
     } finally { syncing = false; }
     applyProjector();
   }
@@ -135,91 +74,10 @@
   }
 
   // ------------------------------------------------------------ computing
-  // Two workers, each with its own queue: one contact (the Support tab, the headline) and
-  // the orientation sweep (Fig. 11), so a long sweep never delays the support.
-  var WORKER_CODE =
-    "\nfunction contact(input) { return MicropillarKernel.simulate(input); }\n" +
-    "function sweep(job) {\n" +
-    "  var keys = ['F_mean_x', 'F_mean_y', 'D_x', 'D_y', 't_out'], out = {theta0: job.theta0, success: []};\n" +
-    "  keys.forEach(function (k) { out[k] = []; });\n" +
-    "  job.theta0.forEach(function (t) {\n" +
-    "    var r = MicropillarKernel.simulate(Object.assign({}, job.base, {theta0: t}));\n" +
-    "    keys.forEach(function (k) { out[k].push(r[k]); });\n" +
-    "    out.success.push(r.success);\n" +
-    "  });\n  return out;\n}\n" +
-    "self.onmessage = function (e) {\n" +
-    "  var t0 = Date.now(), r;\n" +
-    "  try { r = e.data.kind === 'sweep' ? sweep(e.data.input) : contact(e.data.input); }\n" +
-    "  catch (error) { r = {error: error.message}; }\n" +
-    "  self.postMessage({id: e.data.id, result: r, ms: Date.now() - t0});\n};\n";
-
-  function startWorker(channel) {
-    try {
-      var code = document.getElementById("mp-kernel").textContent + WORKER_CODE;
-      var url = URL.createObjectURL(new Blob([code], {type: "text/javascript"}));
-      var w = new Worker(url);
-      URL.revokeObjectURL(url);
-      w.onmessage = function (e) { finished(channel, e.data.id, e.data.result, e.data.ms); };
-      w.onerror = function () { channel.worker = null; };
-      return w;
-    } catch (error) {
-      return null;  // no workers (an old browser): compute on the page, one job at a time
-    }
-  }
-
-  function Channel(kind, draw, busy) {
-    this.kind = kind; this.draw = draw; this.busy = busy;
-    this.worker = null; this.inFlight = null; this.pending = null;
-  }
-  var nextId = 1;
-
-  function request(channel, input) {
-    var job = {id: nextId++, input: input, started: Date.now()};
-    if (channel.inFlight) {
-      channel.pending = job;
-      if (channel.worker && Date.now() - channel.inFlight.started > RESTART_AFTER_MS) {
-        channel.worker.terminate();  // a long computation the user has moved on from
-        channel.worker = startWorker(channel);
-        channel.inFlight = null;
-        channel.pending = null;
-        send(channel, job);
-      }
-      return;
-    }
-    send(channel, job);
-  }
-
-  function send(channel, job) {
-    channel.inFlight = job;
-    channel.busy(true);
-    if (channel.worker) { channel.worker.postMessage({id: job.id, kind: channel.kind, input: job.input}); return; }
-    setTimeout(function () {
-      var t0 = Date.now(), r;
-      try {
-        r = channel.kind === "sweep" ? sweepHere(job.input) : KERNEL.simulate(job.input);
-      } catch (error) { r = {error: error.message}; }
-      finished(channel, job.id, r, Date.now() - t0);
-    }, 0);
-  }
-
-  function sweepHere(job) {  // the worker's sweep, on the page (no Worker)
-    var out = {theta0: job.theta0, success: [], F_mean_x: [], F_mean_y: [], D_x: [], D_y: [], t_out: []};
-    job.theta0.forEach(function (t) {
-      var r = KERNEL.simulate(Object.assign({}, job.base, {theta0: t}));
-      ["F_mean_x", "F_mean_y", "D_x", "D_y", "t_out"].forEach(function (k) { out[k].push(r[k]); });
-      out.success.push(r.success);
-    });
-    return out;
-  }
-
-  function finished(channel, id, result, ms) {
-    if (!channel.inFlight || channel.inFlight.id !== id) return;  // an abandoned job
-    channel.inFlight = null;
-    if (channel.pending) { var next = channel.pending; channel.pending = null; send(channel, next); return; }
-    channel.busy(false);
-    channel.draw(result, ms);
-  }
-
+  // Three job queues, each with its own Web Worker (jobs.js): the support's fixed array
+  // (the Support tab, the headline), the orientation sweep (Fig. 11) and the uniform array
+  // (the headline's average over all orientations), so neither array delays the support.
+  var Channel = window.MicropillarJobs.Channel;
   var contactChannel = new Channel("contact", drawSupport, function (on) {
     if (on) model("status").text = "computing…";
   });
@@ -227,21 +85,31 @@
     if (on) model("polar-status").text = "computing the 72 orientations in the page…";
   });
 
+  var uniformChannel = new Channel("uniform", drawUniform, function (on) {
+    if (on) model("uniform-readout").text = "<i>uniform array: computing in the page…</i>";
+  });
+
+  function arrayBeta(s) { return s.beta_mode === "fixed" ? s.beta : "self"; }
   function contactInput(s) {
-    return {k_r: s.k_r, k_theta: s.k_theta, F_N: s.F_N, theta0: s.theta0_deg * Math.PI / 180,
-            rtol: 1e-6, samples: CONFIG.support_samples, max_steps: MAX_STEPS};
+    return {beta: arrayBeta(s),
+            input: {k_r: s.k_r, k_theta: s.k_theta, F_N: s.F_N, theta0: s.theta0_deg * Math.PI / 180,
+                    rtol: 1e-6, samples: CONFIG.support_samples, max_steps: MAX_STEPS}};
   }
   function sweepInput(s) {
-    return {theta0: CONFIG.polar_theta0,
+    return {theta0: CONFIG.polar_theta0, beta: arrayBeta(s),
             base: {k_r: s.k_r, k_theta: s.k_theta, F_N: s.F_N, rtol: 1e-6, max_steps: MAX_STEPS}};
   }
-  function sweepKey(s) { return [s.k_r, s.k_theta, s.F_N].join(","); }
+  function uniformInput(s) {  // app.worker.compute_uniform: tol UNIFORM_TOL
+    return {beta: arrayBeta(s), tol: CONFIG.uniform_tol,
+            input: {k_r: s.k_r, k_theta: s.k_theta, F_N: s.F_N}};
+  }
+  function arraysKey(s) { return [s.k_r, s.k_theta, s.F_N, arrayBeta(s)].join(","); }
 
   // ------------------------------------------------------------ drawing: the support
   var readyResolve;
   var explorer = {
     ready: new Promise(function (resolve) { readyResolve = resolve; }),
-    drawn: 0, result: null, polar: null, polarDrawn: 0
+    drawn: 0, result: null, polar: null, polarDrawn: 0, uniform: null, uniformDrawn: 0
   };
 
   function range(fig, which, lohi) { fig[which].setv({start: lohi[0], end: lohi[1]}); }
@@ -272,7 +140,8 @@
     source("energy_live_frames").data = energies.frames;
     source("support_frames").data = frames.support_frames;
     source("support_frame_params").data = frames.support_frame_params;
-    writeHeadline(r);
+    explorer.result = r;
+    writeHeadline();
     model("status").text = "one contact: τ_out = " + r.t_out.toPrecision(4) + " r₀/V₀, " +
       r.stats.n_steps + " steps, computed in " + ms + " ms in the browser" +
       (r.success ? "" : " — <b>" + esc(r.message) + "</b>");
@@ -283,15 +152,67 @@
     if (explorer.drawn === 1) { readyResolve(r); autoplay(); }
   }
 
-  function writeHeadline(r) {
-    var ratio = r.F_mean_x / CONFIG.mu0;
-    var text = VIEWS.headlineText(ratio, Number(state.theta0_deg.toFixed(6)), null, CONFIG.uniform_note,
+  function betaWords(beta, note) {
+    return "β = " + beta.toFixed(3) + (state.beta_mode === "fixed" ? " (fixed)" :
+      " (self-consistent" + (note ? ": " + note : "") + ")");
+  }
+
+  /** The dashboard's sentence: the fixed array at theta0 and, once computed for this
+   * state, the uniform array's average the slab feels (app.texts.FELT_AVERAGE). */
+  function writeHeadline() {
+    var r = explorer.result;
+    if (!r) return;
+    var ratio = r.F_mean_x / CONFIG.mu0, u = explorer.uniform, felt = null, note = "";
+    if (u && u.key === arraysKey(state)) {
+      if (u.error || u.status === "budget") note = CONFIG.uniform_failed_note;
+      else felt = u[CONFIG.average_columns[CONFIG.felt_average]];
+    }
+    var text = VIEWS.headlineText(ratio, Number(state.theta0_deg.toFixed(6)), felt, note,
                                    CONFIG.felt_words);
     model("headline").text = (r.success ? "" : "<span style='color:#b00020'>" + esc(r.message) +
                               "</span><br>") + esc(text);
     model("headline-number").text = "F<sub>T,x</sub>/(μ<sub>0</sub>F<sub>N</sub>) = <b>" +
       ratio.toFixed(3) + "</b> <span style='font-size:0.85em'>(every support at θ₀, Eq. 10; " +
-      "D<sub>y</sub>/D<sub>x</sub> = " + (r.D_y / r.D_x).toFixed(3) + ")</span>";
+      "D<sub>y</sub>/D<sub>x</sub> = " + (r.D_y / r.D_x).toFixed(3) + "; " +
+      betaWords(r.params.beta, r.beta_note) + ")</span>";
+  }
+
+  /** A Markdown table (the dashboard's readouts) as HTML. */
+  function tableHtml(markdown) {
+    var parts = markdown.split("\n\n"), lines = parts[0].split("\n"), html = "<table class='mp-readout'>";
+    lines.forEach(function (line, i) {
+      if (i === 1) return;  // the alignment row
+      var cells = line.replace(/^\|\s*|\s*\|$/g, "").split(/\s*\|\s*/), tag = i === 0 ? "th" : "td";
+      html += "<tr>" + cells.map(function (c, j) {
+        var bold = /^\*\*(.*)\*\*$/.exec(c), text = bold ? "<b>" + esc(bold[1]) + "</b>" : esc(c);
+        return "<" + tag + (j ? " style='text-align:right'" : "") + ">" + text + "</" + tag + ">";
+      }).join("") + "</tr>";
+    });
+    return html + "</table>" + (parts[1] ? "<p>" + esc(parts[1]) + "</p>" : "");
+  }
+
+  // ------------------------------------------------------------ drawing: the uniform array
+  function drawUniform(u, ms, input) {
+    var key = [input.input.k_r, input.input.k_theta, input.input.F_N, input.beta].join(",");
+    explorer.uniform = Object.assign({}, u, {key: key});
+    var row = null, extra = "";
+    if (u.error || u.status === "budget") {
+      extra = "<b>Not computed:</b> " + esc(u.error || u.message);
+    } else {
+      row = {FTx_over_mu0FN: u.FTx_over_mu0FN, FTx_over_mu0FN_duration: u.FTx_over_mu0FN_duration,
+             Dy_over_Dx: u.Dy_over_Dx, Nc_over_Nc0: u.Nc_over_Nc0, success: u.success,
+             quadrature_error_FTx: u.quadrature_error.FTx_over_mu0FN, n_failed: u.n_failed};
+      extra = betaWords(u.beta, "") + "; " + u.n_members + " orientations, " +
+        u.stats.trajectories + " contacts, computed in " + ms + " ms in the browser" +
+        (u.message !== "ok" ? " — " + esc(u.message) : "");
+    }
+    model("uniform-readout").text = tableHtml(VIEWS.uniformMarkdown(
+      row, CONFIG.felt_average, CONFIG.uniform_failed_note, CONFIG.average_names,
+      CONFIG.average_columns, CONFIG.felt_average)) +
+      "<div style='font-size:0.85em;color:#555555'>" + extra + "</div>";
+    writeHeadline();
+    explorer.uniformDrawn += 1;
+    document.documentElement.setAttribute("data-uniform", String(explorer.uniformDrawn));
   }
 
   function reducedMotion() {
@@ -384,12 +305,13 @@
   }
 
   // ------------------------------------------------------------ the API
-  var lastSweep = null;
+  var lastArrays = null;
   function compute() {
-    request(contactChannel, contactInput(state));
-    if (sweepKey(state) !== lastSweep) {
-      lastSweep = sweepKey(state);
-      request(sweepChannel, sweepInput(state));
+    contactChannel.request(contactInput(state));
+    if (arraysKey(state) !== lastArrays) {
+      lastArrays = arraysKey(state);
+      sweepChannel.request(sweepInput(state));
+      uniformChannel.request(uniformInput(state));
     }
     drawMap();
   }
@@ -405,7 +327,13 @@
         return;
       }
       if (k === "projector") { state.projector = !!v; return; }
-      if (KEYS.indexOf(k) < 0) throw new RangeError(k + " is not a setting; known: " + KEYS.concat(["tab", "projector"]).join(", "));
+      if (k === "beta_mode") {
+        if (CONFIG.beta_mode.choices.indexOf(v) < 0)
+          throw new RangeError("beta_mode=" + v + " is not " + CONFIG.beta_mode.expected);
+        if (state.beta_mode !== v) { state.beta_mode = v; changed = true; }
+        return;
+      }
+      if (KEYS.indexOf(k) < 0) throw new RangeError(k + " is not a setting; known: " + KEYS.concat(["tab", "projector", "beta_mode"]).join(", "));
       if (!inRange(k, v)) throw new RangeError(k + "=" + v + " is not " + CONTROLS[k].expected);
       if (state[k] !== v) { state[k] = v; changed = true; }
     });
@@ -443,6 +371,10 @@
     setState({projector: on}, true);
     applyProjector();
   };
+  explorer._betaMode = function (mode) {
+    if (syncing || !doc) return;
+    setState({beta_mode: mode}, true);
+  };
   explorer._mapQuantity = function (q) { mapQuantity = q; if (doc) drawMap(); };
   explorer._mapTap = function (x, y) {  // a click on the regime map: its k_r, k_theta
     if (!doc || !isFinite(x) || !isFinite(y)) return;
@@ -477,8 +409,12 @@
     setState(partial, false);
   }
 
+  // The state the file was packed with (the dashboard's download button): used when the
+  // link has no fragment of its own.
+  var INITIAL = document.getElementById("mp-initial");
+  INITIAL = INITIAL ? JSON.parse(INITIAL.textContent) : "";
   function applyFragment() {
-    var parsed = parseFragment(location.hash);
+    var parsed = parseFragment(location.hash && location.hash !== "#" ? location.hash : INITIAL);
     state = parsed.state;
     showNotice(parsed.notices);
     syncControls();
@@ -491,8 +427,7 @@
     doc.all_models.forEach(function (m) {
       if (m.name) (byName[m.name] = byName[m.name] || []).push(m);
     });
-    contactChannel.worker = startWorker(contactChannel);
-    sweepChannel.worker = startWorker(sweepChannel);
+    [contactChannel, sweepChannel, uniformChannel].forEach(function (c) { c.start(); });
     applyFragment();
     window.addEventListener("hashchange", applyFragment);
     window.addEventListener("keydown", mapKeys, true);

@@ -9,6 +9,7 @@
  *   forceData, forceXRange, forceYRange <- app.figures.histories
  *   polarData, polarNow, extentData     <- app.figures.polar (Fig. 11)
  *   changeWords, headlineText           <- app.views.readouts (the headline sentence)
+ *   uniformMarkdown                     <- app.views.readouts.uniform_markdown
  *
  * tests/test_offline_views.py runs each in Node against its Python original. Works as a
  * browser script (``MicropillarViews``) and in Node (``require``); needs the kernel.
@@ -270,7 +271,32 @@
       " (" + feltWords + ").";
   }
 
+  function fmtReadout(x, digits) {  // app.views.readouts._fmt
+    return x === null || x === undefined || !isFinite(x) ? "–" : fmtG(x, digits || 4);
+  }
+
+  /** The uniform array's readout table (Markdown), as the dashboard writes it: both averages
+   * of its friction, the slab's (``felt``) first, the one named ``average`` in bold.
+   * ``names``: app.texts.AVERAGE_NAMES (in its order), ``columns``: AVERAGE_COLUMNS. */
+  function uniformMarkdown(row, average, note, names, columns, felt) {
+    if (row === null || row === undefined)
+      return "| Uniform array | |\n|:--|--:|\n| F_T,x/(μ₀F_N) | " + (note || "…") + " |";
+    var order = [felt].concat(Object.keys(names).filter(function (a) { return a !== felt; }));
+    var rows = order.map(function (a) {
+      var v = fmtReadout(row[columns[a]]);
+      return ["friction F_T,x/(μ₀F_N), " + names[a], a === average ? "**" + v + "**" : v];
+    });
+    rows.push(["dissipated across / along, D_y/D_x", fmtReadout(row.Dy_over_Dx)],
+              ["contacts, N_c/N_c0", fmtReadout(row.Nc_over_Nc0)],
+              ["quadrature error", fmtReadout(row.quadrature_error_FTx, 2)]);
+    var body = rows.map(function (r) { return "| " + r[0] + " | " + r[1] + " |"; }).join("\n");
+    var ok = row.success === undefined ? true : row.success;
+    var warn = ok ? "" : "\n\n⚠ not every member finished its contact (" + (row.n_failed || 0) + " failed)";
+    return "| Uniform array (all θ₀) | |\n|:--|--:|\n" + body + warn;
+  }
+
   return {
+    uniformMarkdown: uniformMarkdown,
     viewBox: viewBox, sceneData: sceneData, supportFrames: supportFrames,
     energyFrames: energyFrames, forceData: forceData, forceXRange: forceXRange,
     forceYRange: forceYRange, polarData: polarData, polarNow: polarNow,

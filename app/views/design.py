@@ -27,11 +27,13 @@ from ..figures.polar import set_extent
 from ..pinned_state import complete
 from ..results import SessionResults, optimum_family
 from ..state import ExplorerState, distribution_of
-from ..urlstate import DESIGN_INPUTS
+from ..urlstate import DESIGN_INPUTS, LAW_INPUTS
 from .compare_tables import design_compare_markdown, distribution_words
+from .design_law import FrictionLawView
 from .design_readouts import DesignReadouts
 from .design_upload import HistogramUpload
 from .layout import INPUT_CSS, PHONE, TOP, WIDE, grid_css, mode_classes, projector_grid
+from .locked import locked as _locked
 from .widgets import caption, look
 
 #: Inputs, figures, readouts side by side (the figures take the width left); on a phone
@@ -98,21 +100,6 @@ def _speeds(interval) -> str:
     return f"{_g(lo)} – {_g(hi)} m/s"
 
 
-def _locked(draw) -> None:
-    """Edit the Bokeh figures with the session's document locked: a text input's change
-    reaches the watchers outside Bokeh's lock (an edit there raises in the server), so
-    with a server the edit waits for the next tick, which Bokeh runs locked; its changes
-    leave through Panel's hold as one message, in order with the page's other updates."""
-    doc = pn.state.curdoc
-    if doc is not None and doc.session_context is not None:
-        def held():
-            with pn.io.hold(doc):
-                draw()
-        doc.add_next_tick_callback(held)
-    else:
-        draw()
-
-
 class DesignView(pn.viewable.Viewer):
     """Physical inputs -> the point on the map, the distribution editor, readouts, optimum."""
 
@@ -122,9 +109,11 @@ class DesignView(pn.viewable.Viewer):
     def __init__(self, **params):
         super().__init__(**params)
         s = self.state
+        self.law = FrictionLawView(state=s, results=self.results)
         self.inputs = {name: pn.widgets.TextInput.from_param(
             s.param[name], **caption(label), width=94, margin=(0, 3),
-            css_classes=[f"ctl-{name}"]) for name, (_, _, label, _) in DESIGN_INPUTS.items()}
+            css_classes=[f"ctl-{name}"]) for name, (_, _, label, _) in DESIGN_INPUTS.items()
+            if name not in LAW_INPUTS}  # the law's: ``self.law``
         self.family = pn.widgets.Select.from_param(
             s.param.dist_family, options=FAMILY_LABELS, **caption("Orientations"), width=96,
             margin=(0, 3), css_classes=["ctl-dist_family"])
@@ -355,7 +344,8 @@ class DesignView(pn.viewable.Viewer):
     def __panel__(self):
         grid = pn.GridBox(*self.inputs.values(), ncols=3, margin=(0, 0))
         left = pn.Column(pn.pane.Markdown("**Pillar array** (values with units)",
-                                          margin=(0, 5)), grid, self.point_text, width=315,
+                                          margin=(0, 5)), grid, self.point_text, self.law,
+                         width=315,
                          css_classes=["design-inputs"])
         projector = self.state.projector
         fields = [pn.Row(*row, margin=0, stylesheets=[FIELDS_CSS],

@@ -23,7 +23,8 @@ _MARKUP = re.compile(r"([\\`*_{}\[\]()#!|<>&~])")
 FORMAT = "CSV: header theta0_deg,weight (bin centres) or lower_deg,upper_deg,weight"
 
 
-def _plain(text: str) -> str:
+def plain(text: str) -> str:
+    """``text`` from a file (its name, a problem with it) shown literally in Markdown."""
     return _MARKUP.sub(r"\\\1", text)
 
 
@@ -56,7 +57,7 @@ class HistogramUpload(pn.viewable.Viewer):
         try:
             hist = read_upload(event.new, name)
         except ValueError as error:
-            self._problem = f"**Not loaded:** {_plain(str(error))}. Nothing was changed."
+            self._problem = f"**Not loaded:** {plain(str(error))}. Nothing was changed."
             self._describe()
             return
         self._problem, self._source = "", name
@@ -74,7 +75,7 @@ class HistogramUpload(pn.viewable.Viewer):
                                                  and s.dist2_family == "histogram")
         lines = [self._problem] if self._problem else []
         if s.dist_hist:
-            source = f" from {_plain(repr(self._source))}" if self._source else ""
+            source = f" from {plain(repr(self._source))}" if self._source else ""
             lines.append(f"Histogram{source}: {describe(s.dist_hist)}"
                          + ("" if used else " (not used: choose the histogram family)") + ". "
                          + link_note(s.dist_hist))

@@ -2,8 +2,11 @@
 Bokeh serves itself (no external resources)."""
 from __future__ import annotations
 
+import html
+
 import panel as pn
 
+from .layout import SR_ONLY_CSS
 from ..texts import EQUATIONS, EQUATIONS_INTRO, EQUATIONS_NOTES
 
 
@@ -15,10 +18,14 @@ class EquationsView(pn.viewable.Viewer):
         style = {"font-size": "0.92em"}
         items = [pn.Column(pn.pane.Markdown(caption, styles=style, margin=(0, 10)),
                            # A long equation scrolls within its line on a phone.
+                           # Screen readers read the TeX source (PageAccess hides the
+                           # typeset SVG from them).
+                           pn.pane.HTML(f'<p class="sr-only">{html.escape(latex)}</p>',
+                                        stylesheets=[SR_ONLY_CSS], margin=0),
                            pn.pane.LaTeX(f"$${latex}$$", renderer="mathjax",
                                          styles={"font-size": "1em", "overflow-x": "auto",
                                                  "max-width": "calc(100vw - 30px)"},
-                                         margin=(0, 10)),
+                                         css_classes=["scroll-x"], margin=(0, 10)),
                            margin=(2, 0))
                  for caption, latex in EQUATIONS]
         half = len(items) // 2

@@ -29,6 +29,32 @@ ROOT_PROJECTOR = {"--bokeh-font-size": "18px", "font-size": "18px", "color": "#0
                   "--mp-card-header": "flex", "--mp-text-width": "clamp(250px, 22vw, 360px)",
                   "--mp-wrap": "1", "--mp-keys": "none"}
 
+#: Colours of the page's text and controls where Bokeh's and Panel's defaults fall below
+#: WCAG 2.1 AA contrast (4.5:1 for text; 3:1 for the focus ring against white): the
+#: keyboard focus ring, a warning outline's text (the Reset button), a filled green button
+#: (Play), an info notice's text and inline code.
+UI_COLOURS = {"focus": "#005FCC", "warning_text": "#8A5300", "ok_fill": "#2E7D32",
+              "info_text": "#055160", "code_text": "#1F4E8C"}
+
+#: Given to every shadow root of the page (``app.views.access.PageAccess``): a visible
+#: focus ring on whatever the keyboard reaches, and the colours above.
+ACCESS_CSS = f"""
+:focus-visible {{ outline: 3px solid {UI_COLOURS['focus']} !important;
+                  outline-offset: 2px !important; }}
+.bk-btn-warning:not(:hover):not(:active):not(.bk-active) {{
+  color: {UI_COLOURS['warning_text']} !important; border-color: {UI_COLOURS['warning_text']} !important; }}
+.bk-btn-success {{ background-color: {UI_COLOURS['ok_fill']} !important;
+                   border-color: {UI_COLOURS['ok_fill']} !important; color: #FFFFFF !important; }}
+:host(.alert-info) {{ color: {UI_COLOURS['info_text']} !important; }}
+code {{ color: {UI_COLOURS['code_text']} !important; }}
+"""
+
+#: Text for screen readers only: in the page, out of sight.
+SR_ONLY_CSS = """
+.sr-only { position: absolute !important; width: 1px; height: 1px; padding: 0; margin: -1px;
+           overflow: hidden; clip: rect(0, 0, 0, 0); white-space: nowrap; border: 0; }
+"""
+
 #: On a phone a container may be narrower than its children's desktop sizes (Bokeh sets
 #: ``min-width`` from them), so the page never scrolls sideways.
 SHRINK_CSS = (f"{PHONE} {{ :host {{ min-width: 0 !important; max-width: 100vw; "

@@ -23,10 +23,12 @@ from ..results import SessionResults
 from ..state import URL_KEYS, ExplorerState
 from ..texts import HELP
 from ..urlstate import TABS
+from .access import PageAccess
 from .array import ArrayView
 from .arrays import LoadView, RegimeMapView
 from .browser import PageBehaviour
 from .export import ResultDownload, svg_button
+from .offline_download import offline_button
 from .code import CodeView
 from .controls import Controls
 from .design import DesignView
@@ -87,6 +89,7 @@ class Dashboard(pn.viewable.Viewer):
         self.behaviour = PageBehaviour(search=state.to_search(), margin=0, width=0, height=0)
         self.behaviour.param.watch(self._on_history, "pops")
         self.behaviour.param.watch(self._on_narrow, "narrow")
+        self.access = PageAccess(margin=0, width=0, height=0)
         # The other tabs are built when first shown: a quicker first page.
         self.array = self.polar = self.regime_map = self.load = self.equations = None
         self.design = None
@@ -119,6 +122,7 @@ class Dashboard(pn.viewable.Viewer):
                              margin=(4, 10, 0, 10)),
             pn.Row(*self.downloads, sizing_mode="stretch_width"),
             svg_button(label="Figures on screen (SVG)", css="page-svg"),
+            offline_button(state),
             pn.pane.Markdown("**Animation of the support** (for slides)",
                              margin=(4, 10, 0, 10)),
             self.support.export, self.code, self.help])
@@ -317,7 +321,7 @@ class Dashboard(pn.viewable.Viewer):
         self._root = pn.Column(header, pn.Row(self.sidebar, main, sizing_mode="stretch_both",
                                               css_classes=["page-body"],
                                               stylesheets=[BODY_CSS]),
-                               self.behaviour, sizing_mode="stretch_both",
+                               self.behaviour, self.access, sizing_mode="stretch_both",
                                styles=self._root_styles, css_classes=[DASHBOARD_CLASS],
                                stylesheets=[ROOT_CSS])
         return self._root

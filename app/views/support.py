@@ -31,8 +31,10 @@ from ..figures.live_energy import (energy_frames, energy_live_data, energy_live_
 from ..figures.pinned import add_pinned, forces_A, orbit_A, show_pinned
 from ..figures.player import READY_DELAY_MS, browser_player
 from ..figures.scene import view_box
+from ..motion_words import plots_description
 from ..results import SessionResults
 from ..state import ExplorerState
+from .access import LiveDescription
 from .export import AnimationExport
 from .layout import grid_css, mode_classes, projector_grid
 
@@ -97,6 +99,9 @@ class SupportView(pn.viewable.Viewer):
                        for fig in (self.scene, self.forces, self.friction, self.energy_layout)]
         self._player_pane = pn.pane.Bokeh(self.player.layout, margin=(0, 5),
                                           css_classes=["player"], sizing_mode="stretch_width")
+        # The plots in words, for screen readers: written once per result, never per frame.
+        self.description = LiveDescription(text=plots_description(None), width=0, height=0,
+                                           margin=0, css_classes=["support-description"])
         self.export = AnimationExport(state=self.state, results=self.results, what="support")
         if self._doc is not None:
             # Keyboard shortcuts (and autoplay) start with a change the page sees: made
@@ -133,6 +138,7 @@ class SupportView(pn.viewable.Viewer):
             else:
                 self._frames_js.args["data"].data = frames["support_frames"]
                 self._frames_js.args["fp"].data = frames["support_frame_params"]
+        self.description.text = plots_description(data)
         requested = self.results.slots["support"].requested_at
         if requested is not None:
             self.timings.append(time.perf_counter() - requested)
@@ -195,7 +201,8 @@ class SupportView(pn.viewable.Viewer):
         scene, forces, friction, energy = self._panes
         # stretch_both as the figures inside are (Panel would otherwise override a
         # stretch_width container, with a warning, at every page build).
-        player = pn.Row(self._player_pane, self.spinner, css_classes=["player-row"],
+        player = pn.Row(self._player_pane, self.spinner, self.description,
+                        css_classes=["player-row"],
                         sizing_mode="stretch_both", margin=0)
         self._layout = pn.Column(
             scene, forces, player, friction, energy,

@@ -139,7 +139,7 @@ _PILLAR_HELP = {"D": "pillar diameter, e.g. '5 um'", "h": "pillar height, e.g. '
 
 
 def add_pillar_command(commands) -> None:
-    from . import orientations, speeds
+    from . import compare, orientations, speeds
 
     p = commands.add_parser(
         "pillar", help="a real pillar array in physical units: its point on the map",
@@ -172,6 +172,7 @@ def add_pillar_command(commands) -> None:
                                 "running out prints the result with success false, its "
                                 "outcome and remedy, and exits with 1")
     speeds.add_arguments(run_group)
+    compare.add_arguments(run_group)
     orientations.add_arguments(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=run_pillar)
@@ -235,17 +236,20 @@ def run_pillar(args) -> int:
     """``pillar``: where a real design sits; with --evaluate its array in physical units;
     with --speeds its friction against sliding speed."""
     from ..design_point import evaluate, model_point, regime_intervals
-    from . import speeds
+    from . import compare, speeds
 
-    if args.budget is not None and not (args.evaluate or args.speeds):
-        raise UsageError("--budget", "only with --evaluate or --speeds (the point itself "
-                                     "costs no time)")
+    compare.check(args)
+    if args.budget is not None and not (args.evaluate or args.speeds or args.compare):
+        raise UsageError("--budget", "only with --evaluate, --speeds or --compare (the point "
+                                     "itself costs no time)")
     if args.budget is not None and not (math.isfinite(args.budget) and args.budget > 0):
         raise UsageError("--budget", f"{args.budget!r} must be a finite number of seconds > 0")
     values = speeds.speeds(args)
     design = _pillar_design(args)
     if values is not None:
         return speeds.run(args, design, _distribution(args), values)
+    if args.compare is not None:
+        return compare.run(args, design, _distribution(args))
     record = {"design": design.to_dict(), "point": design.dimensionless(),
               "regime": design.regime(), "intervals": regime_intervals(design)}
     try:

@@ -46,36 +46,51 @@ def _row(p) -> str:
     return text if p.success else f"{text}: {p.message}"
 
 
+def predict(args, design, distribution, values, on_point=None):
+    """The design's friction-velocity curve at ``values`` (m/s); ``UsageError`` naming the
+    flag of a bad input."""
+    check_own_V_s_flag(design)
+    try:
+        return friction_velocity(design, values, distribution, beta=args.beta,
+                                 tol=1e-3 if args.tol is None else args.tol,
+                                 budget=args.budget, on_point=on_point)
+    except ValueError as error:
+        flag = {"V_s": "--V-s", "tol": "--tol", "beta": "--beta", "budget": "--budget"}
+        name = str(error).split("=", 1)[0]
+        raise UsageError(flag.get(name), str(error)) from None
+
+
+def progress(total: int):
+    """``on_point`` that counts finished speeds on a terminal's stderr."""
+    def show(i, point):
+        if sys.stderr.isatty():
+            print(f"\r{i + 1}/{total} speeds", end="", file=sys.stderr, flush=True)
+    return show
+
+
 def run(args, design, distribution, values) -> int:
     """The curve, printed row by row (or as one JSON object); 0 if every speed succeeded."""
-    try:
-        check_own_V_s(design)
-    except ValueError as error:
-        raise UsageError("--V-s", f"{error} (--V-s or --friction)") from None
     if not args.json:
+        check_own_V_s_flag(design)
         law = design.friction_law
         print(f"Friction against sliding speed (F_T,x/F_N of the structured surface, mu of "
               f"the flat material; Eq. 4 with mu_s {fmt(law.mu_s)}, A {fmt(law.A)}, "
               f"B {fmt(law.B)}, V_s {fmt(law.V_s)} m/s)")
         print("+- quadrature error of F_T,x/F_N; energy: relative energy-balance residual")
         print(_HEAD, flush=True)
-
-    def show(i, point):
-        if not args.json:
-            print(_row(point), flush=True)
-        elif sys.stderr.isatty():
-            print(f"\r{i + 1}/{len(values)} speeds", end="", file=sys.stderr, flush=True)
-
-    try:
-        curve = friction_velocity(design, values, distribution, beta=args.beta,
-                                  tol=1e-3 if args.tol is None else args.tol,
-                                  budget=args.budget, on_point=show)
-    except ValueError as error:
-        flag = {"V_s": "--V-s", "tol": "--tol", "beta": "--beta", "budget": "--budget"}
-        name = str(error).split("=", 1)[0]
-        raise UsageError(flag.get(name), str(error)) from None
+    show = progress(len(values)) if args.json else (
+        lambda i, point: print(_row(point), flush=True))
+    curve = predict(args, design, distribution, values, on_point=show)
     if args.json:
         if sys.stderr.isatty():
             print(file=sys.stderr)
         print(json.dumps(jsonable(curve.to_dict())))
     return 0 if curve.success else 1
+
+
+def check_own_V_s_flag(design) -> None:
+    """``UsageError`` naming --V-s unless the design's law has its own V_s."""
+    try:
+        check_own_V_s(design)
+    except ValueError as error:
+        raise UsageError("--V-s", f"{error} (--V-s or --friction)") from None

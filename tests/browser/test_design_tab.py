@@ -1,14 +1,18 @@
 """The Design tab of the served dashboard: the pillar array's dimensionless point is
 computed and marked on the regime map, and it moves along its speed line when the
 sliding speed is typed in; the distribution editor (family, parameters, a histogram file)
-redraws the density over the Fig. 11a curve and changes the readouts."""
+redraws the density over the Fig. 11a curve and changes the readouts; a measured friction
+curve uploaded is fitted, drawn on Fig. 3 and carried by the link."""
 from __future__ import annotations
 
 import math
 import re
+from pathlib import Path
 
 import pytest
 
+from model.friction_curve import read_curve
+from model.friction_fit import fit_friction
 from model.units import PillarDesign
 
 from . import page_tools as pt
@@ -209,4 +213,37 @@ def test_the_distribution_editor_redraws_the_density_and_the_readouts(page, page
         has_text="negative weight -3 on line 3").first.wait_for(timeout=20_000)
     assert 130.0 <= _density_peak(page)[0] <= 140.0 and _readout(page) == shown
     assert "hist=0:10:" in page.url
+    assert page_log.errors == [], page_log.errors
+
+
+# --------------------------------------------------------------------------- friction law
+
+def test_a_measured_friction_curve_is_fitted_drawn_and_carried_by_the_link(page, page_log,
+                                                                          app_url):
+    """The example curve uploaded: the fitted coefficients with their 95 % intervals in the
+    page, the law's inputs set to them, Fig. 3 drawing the points and the band, and the
+    link carrying the four coefficients."""
+    example = Path(__file__).resolve().parents[2] / "examples" / "flat_friction.csv"
+    fit = fit_friction(read_curve(example))
+    pt.wait_for_app(page, f"{app_url}?tab=design")
+    pt.wait_for_plot(page, "design_law")
+    assert "d_mus" not in page.url  # the paper's law: not in a default view's link
+    page.locator(".design-friction-file input[type=file]").first.set_input_files(str(example))
+    note = page.locator(".design-friction p").filter(has_text="Fitted to")
+    note.first.wait_for(timeout=30_000)
+    text = " ".join(page.locator(".design-friction p").all_inner_texts())
+    lo, hi = fit.ci95["mu_s"]
+    assert f"μ_s = {fit.values['mu_s']:.4g} [{lo:.4g}, {hi:.4g}]" in text, text
+    lo, hi = fit.ci95["V_s"]
+    assert f"V_s = {1e3 * fit.values['V_s']:.4g} [{1e3 * lo:.4g}, {1e3 * hi:.4g}] mm/s" in text
+    assert "The design uses this fit." in text
+    shown = {key: f"{fit.values[name]:.6g}" for key, name in
+             (("d_mus", "mu_s"), ("d_A", "A"), ("d_B", "B"))}
+    pt.wait_for(page, lambda: all(f"{k}={v}" in page.url for k, v in shown.items())
+                and "d_Vs=1.065" in page.url, timeout_s=20.0,
+                what=lambda: f"the fitted coefficients {shown} in the link {page.url}")
+    assert page.locator(".ctl-design_mu_s input").first.input_value() == shown["d_mus"]
+    pt.wait_for(page, lambda: len((pt.read_source(page, "law_measured") or {}).get("v", []))
+                == fit.n_points and len(pt.read_source(page, "law_band")["v"]) > 10,
+                timeout_s=20.0, what="the measured points and the fit's band on Fig. 3")
     assert page_log.errors == [], page_log.errors

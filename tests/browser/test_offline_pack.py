@@ -8,12 +8,15 @@ import math
 import pytest
 
 from app.offline.pack import write
-from model import Params, simulate_support
+from app.worker import UNIFORM_TOL, compute_support, compute_uniform
+from model import Params
 from model.controls import CONTROLS
+from model.friction import mu0
 
 from .serving import VIEWPORT
 
 DRAWN = "Number(document.documentElement.getAttribute('data-drawn') || 0)"
+UNIFORM = "Number(document.documentElement.getAttribute('data-uniform') || 0)"
 DEFAULTS = {k: CONTROLS[k].default for k in ("k_r", "k_theta", "F_N", "theta0_deg")}
 
 
@@ -81,15 +84,30 @@ def test_opens_from_file_with_no_request_and_no_error(offline):
     orbit = offline.data("orbit")
     assert len(orbit["x0"]) > 100  # the orbit was computed in the page
     assert offline.page.evaluate("JSON.stringify(explorer.state)") == (
-        '{"tab":"support","projector":false,"play":false,"k_r":3,"k_theta":0.01,"F_N":1,'
-        '"theta0_deg":90}')
-    want = simulate_support(Params(k_r=3, k_theta=0.01)).F_mean[0]
-    got = offline.page.evaluate("explorer.result.F_mean_x")
-    assert got == pytest.approx(want, rel=1e-4)
-    assert "0.943" in offline.text("headline-number")  # F_T,x/(mu0 F_N), pendulum at 90 deg
-    # The dashboard's headline sentence for this state.
-    assert offline.text("headline").startswith(
-        "Friction is 5.7 % below a rigid surface (every support at θ₀ = 90°)")
+        '{"tab":"support","projector":false,"play":false,"beta_mode":"self","k_r":3,'
+        '"k_theta":0.01,"F_N":1,"theta0_deg":90,"beta":1}')
+    # The support is its fixed array's contact at the self-consistent beta, as the
+    # dashboard's (app.worker.compute_support).
+    want = compute_support(Params(k_r=3, k_theta=0.01))
+    got = offline.page.evaluate("explorer.result")
+    assert got["params"]["beta"] == pytest.approx(want.fixed.beta, rel=1e-6)
+    assert got["F_mean_x"] == pytest.approx(want.result.F_mean[0], rel=1e-4)
+    assert f"{want.fixed.FTx_over_mu0FN:.3f}" in offline.text("headline-number")
+    assert f"β = {want.fixed.beta:.3f} (self-consistent)" in offline.text("headline-number")
+    # The uniform array with its self-consistent beta, computed in the page: the
+    # dashboard's readout and headline sentence, its numbers within the quadrature
+    # tolerance of Python's (app.worker.compute_uniform).
+    offline.page.wait_for_function(f"{UNIFORM} >= 1")
+    uniform = offline.page.evaluate("explorer.uniform")
+    row = compute_uniform(3.0, 0.01, 1.0)
+    for key in ("FTx_over_mu0FN", "FTx_over_mu0FN_duration", "Nc_over_Nc0"):
+        assert uniform[key] == pytest.approx(row[key], abs=UNIFORM_TOL), key
+    assert uniform["beta"] == pytest.approx(row["beta"], rel=UNIFORM_TOL)
+    readouts = pytest.importorskip("app.views.readouts")
+    assert offline.text("headline") == readouts.headline_text(
+        got["F_mean_x"] / mu0(), 90, uniform["FTx_over_mu0FN_duration"])
+    assert "with supports of all orientations the slab feels" in offline.text("headline")
+    assert f"{uniform['FTx_over_mu0FN']:.4g}" in offline.text("uniform-readout")
     assert offline.foreign_requests() == []
     assert offline.errors == []
 
@@ -111,7 +129,7 @@ def test_a_slider_key_press_changes_the_plotted_data(offline):
     # What is drawn is the kernel's orbit for the new state.
     want = offline.page.evaluate(
         "Array.from(explorer.simulate({k_r: 3, k_theta: 0.01, F_N: 1, theta0: 85 * Math.PI / 180,"
-        " samples: 400}).series.x)")
+        " beta: explorer.result.params.beta, samples: 400}).series.x)")
     assert after["x1"] == pytest.approx(want[1:], abs=1e-12)
     assert offline.errors == []
 
@@ -120,14 +138,14 @@ def test_a_link_opens_in_its_state(offline):
     offline.open("#k_r=0.03&k_theta=0.03&F_N=3&theta0_deg=120")
     state = offline.page.evaluate("explorer.state")
     assert state == {"tab": "support", "k_r": 0.03, "k_theta": 0.03, "F_N": 3, "theta0_deg": 120,
-                     "projector": False, "play": False}
+                     "projector": False, "play": False, "beta_mode": "self", "beta": 1}
     sliders = offline.page.evaluate(
         "['k_r', 'k_theta', 'F_N', 'theta0_deg'].map(k => "
         "Bokeh.documents[0].get_model_by_name('slider-' + k).value)")
     assert sliders == pytest.approx([math.log10(0.03), math.log10(0.03), math.log10(3), 120])
-    want = simulate_support(Params(k_r=0.03, k_theta=0.03, F_N=3,
-                                   theta0=math.radians(120))).F_mean[0]
-    assert offline.page.evaluate("explorer.result.F_mean_x") == pytest.approx(want, rel=1e-3)
+    want = compute_support(Params(k_r=0.03, k_theta=0.03, F_N=3, theta0=math.radians(120)))
+    assert offline.page.evaluate("explorer.result.F_mean_x") == pytest.approx(
+        want.result.F_mean[0], rel=1e-3)
     assert offline.text("notice") == ""
     # A new fragment in the same page moves it too.
     drawn = offline.page.evaluate(DRAWN)
@@ -157,7 +175,7 @@ def test_friction_histories_and_energy_bars_are_the_kernels(offline):
     offline.open("#k_r=0.03&k_theta=0.03&F_N=1&theta0_deg=90")
     series = offline.page.evaluate(
         "(() => { const s = explorer.simulate({k_r: 0.03, k_theta: 0.03, F_N: 1,"
-        " theta0: Math.PI / 2, samples: 400}).series;"
+        " theta0: Math.PI / 2, beta: explorer.result.params.beta, samples: 400}).series;"
         " return Object.fromEntries(['tau', 'F_x', 'F_y', 'W', 'D_x'].map((k) => [k, Array.from(s[k])])); })()")
     forces = offline.data("forces")  # Fig. 7
     assert forces["F_x"] == pytest.approx(series["F_x"], abs=1e-12)
@@ -220,11 +238,14 @@ def test_polar_diagrams_are_computed_in_the_page(offline):
     assert offline.model("tabs", "active") == 1
     curve = offline.data("polar_FTx")
     assert len(curve["value"]) == 2 * 72 + 1
-    # The sweep's first orientation against Python's fixed array there (beta = 1).
+    # Orientations of the sweep against Python's fixed arrays there, each at its
+    # self-consistent beta (the dashboard's default).
     from model.fixed import orientation_sweep
     from app.worker import POLAR_THETA0
     p = Params(k_r=0.03, k_theta=0.3, F_N=1)
-    sweep = orientation_sweep(p, POLAR_THETA0[[0, 40]], beta=1.0)
+    sweep = orientation_sweep(p, POLAR_THETA0[[0, 40]], beta="self")
+    betas = offline.page.evaluate("[explorer.polar.beta[0], explorer.polar.beta[40]]")
+    assert betas == pytest.approx(list(sweep.beta), rel=1e-5)
     assert curve["value"][0] == pytest.approx(sweep.FTx_over_mu0FN[0], rel=1e-4)
     assert curve["value"][40] == pytest.approx(sweep.FTx_over_mu0FN[1], rel=1e-4)
     assert offline.data("polar_DyDx")["value"][40] == pytest.approx(sweep.Dy_over_Dx[1], rel=1e-3)
@@ -292,3 +313,24 @@ def test_a_phone_gets_the_page_without_horizontal_scroll(browser, explorer_file)
         assert errors == []
     finally:
         context.close()
+
+
+def test_a_packed_state_opens_without_a_fragment(browser, tmp_path):
+    """The dashboard's download: the file packed with a state opens in it (fixed beta)."""
+    path = tmp_path / "explorer.html"
+    write(path, "#k_r=0.5&k_theta=0.2&F_N=3&theta0_deg=120&beta=0.4&tab=polar&projector=1")
+    offline = Offline(browser, path)
+    try:
+        offline.open()
+        state = offline.page.evaluate("explorer.state")
+        assert state == {"tab": "polar", "k_r": 0.5, "k_theta": 0.2, "F_N": 3, "theta0_deg": 120,
+                         "projector": True, "play": False, "beta_mode": "fixed", "beta": 0.4}
+        assert offline.model("beta-mode", "value") == "fixed"
+        assert offline.page.evaluate("explorer.result.params.beta") == 0.4
+        offline.page.wait_for_function(f"{POLAR} >= 1 && {UNIFORM} >= 1")
+        assert set(offline.page.evaluate("explorer.polar.beta")) == {0.4}
+        assert offline.page.evaluate("explorer.uniform.beta") == 0.4
+        assert "β = 0.400 (fixed)" in offline.text("uniform-readout")
+        assert offline.text("notice") == "" and offline.errors == []
+    finally:
+        offline.context.close()

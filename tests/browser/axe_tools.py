@@ -1,0 +1,40 @@
+"""axe-core (the npm package) in a page: WCAG 2.1 A/AA rules, run on the whole document.
+
+axe-core is installed next to the repository, never committed:
+``npm install --prefix .browser-tools axe-core@4`` (``.ci/run`` does it). ``AXE_JS`` is
+where the tests look for it; ``MICROPILLAR_AXE_JS`` names another copy.
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from .serving import ROOT
+
+AXE_JS = Path(os.environ.get("MICROPILLAR_AXE_JS")
+              or ROOT / ".browser-tools" / "node_modules" / "axe-core" / "axe.min.js")
+#: The rule set: WCAG 2.0 and 2.1, levels A and AA.
+WCAG_TAGS = ["wcag2a", "wcag2aa", "wcag21a", "wcag21aa"]
+INSTALL_HINT = "npm install --prefix .browser-tools axe-core@4"
+
+
+def violations(page) -> list[dict]:
+    """axe's WCAG 2.1 A/AA violations on the page as it is now (axe is injected once):
+    [{id, impact, help, nodes: [target, ...], summary}]."""
+    if not page.evaluate("() => typeof window.axe === 'object'"):
+        page.add_script_tag(path=str(AXE_JS))
+    return page.evaluate(
+        """async (tags) => {
+          const result = await axe.run(document, {runOnly: {type: "tag", values: tags},
+                                                  resultTypes: ["violations"]});
+          return result.violations.map((v) => ({
+            id: v.id, impact: v.impact, help: v.help,
+            nodes: v.nodes.map((n) => n.target.map(String).join(" >> ")),
+            summary: v.nodes.slice(0, 3).map((n) => n.failureSummary)}));
+        }""", WCAG_TAGS)
+
+
+def describe(found: list[dict]) -> str:
+    """Violations as text, one rule a line with a few of its elements."""
+    return "\n".join(f"{v['id']} ({len(v['nodes'])} elements, {v['impact']}): {v['help']}; "
+                     f"e.g. {v['nodes'][:3]} {v['summary'][:1]}" for v in found)

@@ -1,0 +1,109 @@
+"""The offline explorer's arrays (app/offline/arrays.js, solvers.js) against the Python model.
+
+One model, two implementations: Node runs the JavaScript uniform array (the quadrature
+over theta0 of model/uniform.py, wrapped in the self-consistent beta of model/beta.py) and
+the fixed arrays with their self-consistent beta (model/fixed.py), and the results are
+compared with Python's on a grid covering the four regimes (model.params.REGIMES) and
+loads 0.1-10 (docs/offline.md, "Agreement").
+
+* Uniform arrays at tol 1e-3: F_T,x/(mu0 F_N) (both averages) and N_c/N_c0 within tol of
+  Python's, beta within tol beta, D_y/D_x within tol plus both error estimates.
+* Fixed arrays at rtol 1e-8: beta and F_T,x/(mu0 F_N) within 1e-5 relative, and the same
+  note where beta has no exact root (tau_out jumps across it).
+* The budgets: a uniform array that runs out of contacts or intervals says so.
+"""
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+from importlib import resources
+
+import pytest
+
+from model import REGIMES, orientation_sweep, uniform_array
+from model.friction import mu0
+
+from test_offline_kernel import _node
+
+RUNNER = resources.files("app.offline") / "node_arrays.js"
+TOL = 1e-3
+LOADS = (0.1, 1.0, 10.0)
+
+
+def run_js(calls: list[dict]) -> list[dict]:
+    """Results of app/offline/arrays.js for ``calls`` ({fn, args}), one Node process."""
+    done = subprocess.run([_node(), str(RUNNER)], input=json.dumps(calls), text=True,
+                          capture_output=True, timeout=900)
+    assert done.returncode == 0, done.stderr
+    return json.loads(done.stdout)
+
+
+def _springs(name):
+    return dict(k_r=REGIMES[name].k_r, k_theta=REGIMES[name].k_theta)
+
+
+STATES = [(name, F) for name in REGIMES for F in LOADS]
+
+
+@pytest.fixture(scope="module")
+def uniform_js():
+    calls = [dict(fn="uniformArray", args=[dict(_springs(n), F_N=F), dict(tol=TOL)])
+             for n, F in STATES]
+    return dict(zip(STATES, run_js(calls)))
+
+
+@pytest.mark.parametrize("name,F_N", STATES)
+def test_uniform_array_agrees_with_python(uniform_js, name, F_N):
+    js = uniform_js[(name, F_N)]
+    assert "error" not in js, js
+    py = uniform_array(REGIMES[name].replace(F_N=F_N), tol=TOL)
+    where = f"{name}, F_N = {F_N}"
+    assert js["success"] and py.success, (where, js["message"], py.message)
+    for key in ("FTx_over_mu0FN", "FTx_over_mu0FN_duration", "Nc_over_Nc0"):
+        assert abs(js[key] - getattr(py, key)) <= TOL, (where, key, js[key], getattr(py, key))
+    assert abs(js["beta"] - py.beta) <= TOL * py.beta, (where, js["beta"], py.beta)
+    bound = TOL + js["quadrature_error"]["Dy_over_Dx"] + py.quadrature_error["Dy_over_Dx"]
+    assert abs(js["Dy_over_Dx"] - py.Dy_over_Dx) <= bound, (where, js["Dy_over_Dx"], py.Dy_over_Dx)
+    # The error estimates are the quadrature's own: met, as in Python.
+    assert js["quadrature_error"]["FTx_over_mu0FN"] <= TOL
+    assert js["quadrature_error"]["Nc_over_Nc0"] <= TOL
+
+
+def test_fixed_beta_agrees_with_python():
+    theta0 = [0.3, 1.5, 2.8]
+    calls = [dict(fn="orientationSweep", args=[dict(_springs(n), F_N=F, rtol=1e-8), theta0, "self"])
+             for n, F in STATES]
+    for (name, F_N), js in zip(STATES, run_js(calls)):
+        py = orientation_sweep(REGIMES[name].replace(F_N=F_N), theta0, beta="self", rtol=1e-8)
+        for i, t in enumerate(theta0):
+            where = f"{name}, F_N = {F_N}, theta0 = {t}"
+            # Where tau_out jumps across the root (no exact root), both say so, at the same
+            # beta; the contact there is on either side of the jump.
+            assert js["beta_note"][i] == py.beta_note[i], where
+            assert math.isclose(js["beta"][i], py.beta[i], rel_tol=1e-5), (where, js["beta"][i], py.beta[i])
+            if py.beta_note[i]:
+                assert not js["success"][i], where
+                continue
+            assert js["success"][i], where
+            ftx = js["F_mean_x"][i] / mu0()
+            assert math.isclose(ftx, py.FTx_over_mu0FN[i], rel_tol=1e-5), (where, ftx)
+
+
+def test_fixed_beta_number_is_used_as_given():
+    js = run_js([dict(fn="fixedArray", args=[dict(_springs("slider"), theta0=1.0), 0.5])])[0]
+    assert js["beta"] == 0.5 and js["contact"]["params"]["beta"] == 0.5 and js["beta_note"] == ""
+
+
+def test_budgets_say_when_they_ran_out():
+    base = dict(_springs("slider"), F_N=1.0)
+    contacts, intervals, bad = run_js([
+        dict(fn="uniformArray", args=[base, dict(tol=TOL, max_contacts=40)]),
+        dict(fn="uniformArray", args=[base, dict(tol=1e-6, beta=1.0, max_intervals=4)]),
+        dict(fn="uniformArray", args=[base, dict(tol=0.9)])])
+    assert not contacts["success"] and "budget of 40 contacts" in contacts["message"]
+    assert contacts["stats"]["trajectories"] <= 40
+    assert not intervals["success"]
+    assert "quadrature tolerance not met within max_intervals" in intervals["message"]
+    assert intervals["stats"]["intervals"] <= 4
+    assert "tol=0.9" in bad["error"]
