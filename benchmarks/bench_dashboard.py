@@ -167,6 +167,22 @@ def timeline(key_s: float, change_ms: float, paint_ms: float, trace: list,
     return found
 
 
+#: Stamps, in the page, each Bokeh message's first frame (its header names the msgtype).
+FRAME_CLOCK_JS = """(() => {
+  window.__mpFrames = [];
+  const Socket = window.WebSocket;
+  window.WebSocket = class extends Socket {
+    constructor(...args) {
+      super(...args);
+      this.addEventListener("message", (event) => {
+        if (typeof event.data === "string" && event.data.includes('"msgtype"'))
+          window.__mpFrames.push(performance.now());
+      });
+    }
+  };
+})();"""
+
+
 def browser_side(presses: int, out: Path) -> dict:
     from playwright.sync_api import sync_playwright
 
@@ -183,10 +199,9 @@ def browser_side(presses: int, out: Path) -> dict:
             sync_playwright() as pw:
         browser = launch_chromium(pw)
         page = browser.new_page(viewport={"width": 1280, "height": 720})
-        frames = []  # wall-clock seconds at which the page read a message's first frame
-        page.on("websocket", lambda ws: ws.on(
-            "framereceived", lambda payload: frames.append(time.time())
-            if isinstance(payload, str) and '"msgtype"' in payload else None))
+        # The page's own clock of each message's first frame (a Python-side event would be
+        # stamped when Playwright gets round to it, late on a loaded machine).
+        page.add_init_script(FRAME_CLOCK_JS)
         load_s = wait_for_app(page, f"{base}/app")
         settle(page)
         handle = slider_handle(page, css_class="ctl-theta0")
@@ -198,6 +213,8 @@ def browser_side(presses: int, out: Path) -> dict:
             change.append(m["change_ms"])
             paint.append(m["paint_ms"])
             settle(page, quiet_ms=300)
+        frames = page.evaluate(
+            "() => (window.__mpFrames || []).map((t) => (performance.timeOrigin + t) / 1e3)")
         browser.close()
     trace = [json.loads(line) for line in trace_path.read_text().splitlines()] \
         if trace_path.exists() else []

@@ -78,16 +78,17 @@ def law_figure(width: int = 310, height: int = 300):
                      y_range=Range1d(-0.06, 1.5))
     band = source("law_band", EMPTY["law_band"])
     fig.varea(x="v", y1="lo", y2="hi", source=band, fill_color=BLUE, fill_alpha=0.25,
-              legend_label="fit, 95 % band")
+              legend_label="fit 95 % band")
     measured = source("law_measured", EMPTY["law_measured"])
     fig.segment(x0="v", y0="lo", x1="v", y1="hi", source=measured, line_color=GREY)
     fig.scatter("v", "mu", source=measured, size=5, fill_color="white", line_color=BLUE,
-                legend_label="measured ± mu_err")
+                legend_label="measured")
     fig.line("v", "mu", source=source("law", EMPTY["law"]), line_color=BLACK, line_width=2,
-             legend_label="law in use")
+             legend_label="law")
     fig.scatter("v", "mu", source=source("law_V0", EMPTY["law_V0"]), size=10, marker="square",
-                fill_color=VERMILION, line_color=BLACK, legend_label="μ(V₀), design")
-    # Below the plot in two columns, where it hides no point of the curve.
+                fill_color=VERMILION, line_color=BLACK, legend_label="μ at V₀")
+    # Below the plot in two columns, where it hides no point of the curve; short labels,
+    # so that the projector's larger text still fits the figure's width.
     legend = fig.legend[0]
     legend.update(ncols=2, location="center", label_text_font_size=f"{MIN_TEXT_PX}px",
                   padding=1, spacing=0, margin=2, glyph_width=14, label_standoff=2,
