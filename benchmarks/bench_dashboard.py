@@ -156,7 +156,10 @@ def timeline(key_s: float, change_ms: float, paint_ms: float, trace: list,
         if stage in at:
             t = at[stage]
         elif stage == "browser receives":
-            t = next((f for f in frames if f >= after), None)
+            # The first frame after the result was applied: the server stamps "result
+            # sent" once its write returned, and a loaded machine may deliver it before that.
+            since = found.get("result applied", (after - key_s) * 1e3) / 1e3 + key_s
+            t = next((f for f in frames if f >= since), None)
         else:
             t = next((e["t"] for e in trace if e["stage"] == stage and e["t"] >= after
                       and all(e.get(k) == v for k, v in wanted.get(stage, {}).items())), None)
