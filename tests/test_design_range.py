@@ -25,13 +25,28 @@ def finite(record: dict) -> bool:
                                           (1e6, 1e6), (1e-3, 30.0), (300.0, 3e4)])
 def test_anywhere_in_the_model_range_gives_finite_results_and_a_named_outcome(k_r, k_theta):
     """The corners of [1e-3, 1e6]^2 and points between; a 3 s budget bounds the cost (the
-    compliant-radial, stiff-torsional corner rings for longer than that and says so)."""
-    a = distribution_array(Params(k_r=k_r, k_theta=k_theta, F_N=1.0),
-                           VonMises(math.radians(60), 4.0), tol=1e-3, budget=3.0)
-    r = a.to_dict()
+    compliant-radial, stiff-torsional corner rings for longer than that and says so).
+
+    How far 3 s goes depends on the machine: on a slow or busy one no member of a stiff
+    corner may finish. The result must then say so (no value, never a made-up one), and
+    the same point with a larger budget must answer."""
+    def run(budget):
+        a = distribution_array(Params(k_r=k_r, k_theta=k_theta, F_N=1.0),
+                               VonMises(math.radians(60), 4.0), tol=1e-3, budget=budget)
+        r = a.to_dict()
+        assert r["outcome"] in OUTCOMES and r["success"] is (r["outcome"] == "ok")
+        assert r["map_status"] == "outside_map"
+        assert "outside the paper's explored map" in r["message"]
+        return a, r
+
+    a, r = run(3.0)
+    if a.n_failed == a.n_members:
+        # Nothing finished in time: a named budget outcome and no number at all.
+        assert r["outcome"] == "contacts_cut" and not r["success"]
+        assert f"none of the {a.n_members} members finished" in r["message"]
+        assert not any(math.isfinite(r[k]) for k in NUMBERS), r
+        a, r = run(60.0)
     assert finite(r), r
-    assert r["outcome"] in OUTCOMES and r["success"] is (r["outcome"] == "ok")
-    assert r["map_status"] == "outside_map" and "outside the paper's explored map" in r["message"]
     assert 0.0 < r["FTx_over_mu0FN"] < 1.5 and 0.0 < r["beta"] <= 1.0
 
 
