@@ -232,6 +232,8 @@ for _name, (_key, _field, *_) in DESIGN_INPUTS.items():
     _READERS[_key] = (_name, _design_text(_field), f"a number in {RANGES[_field][0]}"
                       if _field in COEFFICIENTS and _field in RANGES else
                       f"a quantity like {DESIGN_DEFAULTS[_name] or '0.36 GPa'!r}")
+#: Every URL key ``parse`` reads (any other, except ``bokeh*``, gets an "Unknown" notice).
+URL_KEYS = (*_READERS, "regime", "beta", "A")
 
 
 def _fmt(value: float) -> str:
