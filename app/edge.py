@@ -4,7 +4,9 @@ through a public hook, in one place, each installed only on the tested stack (``
 On another version of Panel, Bokeh or Tornado the server says so in one line at start-up
 (``install``) and runs on public behaviour alone: the page still works, without the
 guards below. ``tests/test_edge.py`` fails the day one of the internals they use changes.
-Each guard has a reproducer with plain Panel in ``docs/upstream/``.
+Each guard has a reproducer with plain Panel in ``docs/upstream/``. (Panel's reader of the
+page address, which raises on a 4301-digit value (``docs/upstream/parse_query_digits.py``),
+needs no guard: the page is served without Panel's ``Location``, ``app/main.py``.)
 
 The touches, and what each buys:
 
@@ -19,10 +21,7 @@ The touches, and what each buys:
    (~1 ms) instead of a Bokeh session and a Panel page (~25 ms of the event loop each), so
    a burst of page requests leaves the liveness endpoint fast. Panel's page handler has
    no hook before its session is made; its ``get`` is wrapped.
-3. **Panel's reader of the page address** (``guard_query_parsing``): Panel parses the
-   address of every session (``Location.query_params``) and raises on a value such as
-   4301 digits, and the page stops syncing (``docs/upstream/parse_query_digits.py``).
-4. **Panel's text views drawn late** (``MARKUP_GUARD_JS``, in the page): a change of
+3. **Panel's text views drawn late** (``MARKUP_GUARD_JS``, in the page): a change of
    ``visible`` reaching a markup view built but not yet drawn throws in Panel's view
    (``docs/upstream/markup_visible_before_drawn.py``); likewise a change of ``disabled``
    reaching a control (a FileDownload on a tab not drawn yet) threw "Cannot read
@@ -73,18 +72,17 @@ def untested_note() -> str | None:
         return None
     return (f"panel/bokeh/tornado {found['panel']}/{found['bokeh']}/{found['tornado']} are not "
             f"the tested {TESTED['panel']}/{TESTED['bokeh']}/{TESTED['tornado']}: the server "
-            "runs without its guards (security headers, busy page, address guard, text-view "
-            "guard); see app/edge.py")
+            "runs without its guards (security headers, busy page, text-view guard); see "
+            "app/edge.py")
 
 
 def install() -> bool:
-    """Install the server guards 1-3 (once per process) on the tested stack; elsewhere
+    """Install the server guards 1-2 (once per process) on the tested stack; elsewhere
     log ``untested_note()`` once. Returns whether they are installed."""
     note = untested_note()
     if note is not None:
         log.warning(note)
         return False
-    guard_query_parsing()
     add_security_headers()
     answer_busy_before_building()
     return True
@@ -146,17 +144,7 @@ def answer_busy_before_building() -> None:
     DocHandler.get = get
 
 
-# ---------------------------------------------------------------------- 3. address
-def guard_query_parsing() -> None:
-    from panel.io import location
-
-    from app.urlstate import panel_query
-
-    if not hasattr(location.parse_query, "__wrapped__"):
-        location.parse_query = panel_query(location.parse_query)
-
-
-# ---------------------------------------------------------------------- 4. text views
+# ---------------------------------------------------------------------- 3. text views
 #: Panel's text views (``PanelMarkupView``: HTML, Markdown, alerts) make their
 #: ``container`` when first drawn, and their handler of ``visible`` uses it at once: a page
 #: sent in a patch has views BokehJS builds at once but draws over later turns, so a change

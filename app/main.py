@@ -13,15 +13,12 @@ nothing.
 """
 import panel as pn
 
-from app.edge import guard_query_parsing, on_tested_stack
 from app.opening import BUSY_TITLE, TITLE, build_when_opened, busy_page, loading_shell
 from app.page_template import use_page_template
 from app.pages import page_gate, schedule_release, sessions_of
 from app.results import client_address
 from app.views import Dashboard
 
-if on_tested_stack():  # done by the server hook already; for `panel serve app/main.py`
-    guard_query_parsing()
 pn.extension("mathjax", notifications=False)
 use_page_template(pn.state.curdoc)  # <meta name="viewport">: phones use their own width
 
@@ -39,7 +36,7 @@ def serve() -> None:
         return
     page_id, release, count = id(doc), schedule_release, sessions_of
     if doc is not None and not gate.admit(client, page_id):
-        busy_page(doc).servable(title=BUSY_TITLE)
+        busy_page(doc).servable(title=BUSY_TITLE, location=False)
         return
     shell = loading_shell()
     if doc is not None:
@@ -47,7 +44,7 @@ def serve() -> None:
         doc.on_session_destroyed(
             lambda context: (gate.gone(client, page_id), release(count(context))))
     build_when_opened(shell, Dashboard.from_session, doc)
-    shell.servable(title=TITLE)
+    shell.servable(title=TITLE, location=False)
     if doc is not None:
         gate.built(client, page_id)
 

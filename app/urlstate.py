@@ -4,8 +4,8 @@ A shared link carries every control (``?k_r=0.03&k_theta=0.03&F_N=1&theta0_deg=9
 reload or a colleague's browser shows the same view. ``parse`` never raises: a value it
 cannot use (not a number, NaN, infinite, out of range, unknown choice, longer than
 ``MAX_VALUE_CHARS``) is dropped, the control keeps its default, and a notice naming the
-parameter is returned for the page. ``panel_query`` guards Panel's own reading of the
-address (``app/edge.py`` installs it) against the values Panel cannot convert.
+parameter is returned for the page. Panel itself never reads the address: the page is
+served without Panel's ``Location`` (``servable(location=False)``, ``app/main.py``).
 
 URL keys (values in the units of the controls):
 
@@ -48,7 +48,7 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Mapping
-from urllib.parse import parse_qs, parse_qsl, urlencode
+from urllib.parse import parse_qs, urlencode
 
 from model import REGIMES
 from model.controls import CONTROLS, OBJECTIVES
@@ -377,22 +377,3 @@ def _notice(key: str, text: str, expected: str) -> str:
     return (f"URL parameter {key}={_shown(text)} is not usable ({expected} expected); "
             "the default is used.")
 
-
-def panel_query(parse_query):
-    """``parse_query`` (Panel's reader of ``?a=1&b=x``, ``panel.util.parse_query``) made safe
-    for any address: values longer than ``MAX_VALUE_CHARS``, and values Panel's reader raises
-    on (``int()`` of 4301 digits, or of ``\u00b2``, a digit to ``str.isdigit`` only), are left
-    out, as ``parse`` leaves them out; unguarded, one stops the address syncing."""
-    def guarded(query: str) -> dict:
-        values = {}
-        for key, value in parse_qsl(query[1:]):
-            if len(value) > MAX_VALUE_CHARS:
-                continue
-            try:
-                values.update(parse_query("?" + urlencode({key: value})))
-            except (ValueError, TypeError, SyntaxError, RecursionError, MemoryError):
-                continue
-        return values
-
-    guarded.__wrapped__ = parse_query
-    return guarded

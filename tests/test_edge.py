@@ -27,7 +27,7 @@ def test_on_another_stack_the_server_says_so_in_one_line_and_installs_nothing(
 
     monkeypatch.setattr(edge, "versions", lambda: dict(edge.TESTED, panel="9.9.9"))
     installed = []
-    for name in ("guard_query_parsing", "add_security_headers", "answer_busy_before_building"):
+    for name in ("add_security_headers", "answer_busy_before_building"):
         monkeypatch.setattr(edge, name, lambda name=name: installed.append(name))
     with caplog.at_level(logging.WARNING, logger="app.edge"):
         assert edge.install() is False
@@ -72,22 +72,8 @@ def test_canary_panel_serves_its_pages_with_the_wrapped_handler():
     assert inspect.iscoroutinefunction(inspect.unwrap(DocHandler.get))
 
 
-def test_canary_panel_still_reads_every_address_with_a_parser_that_raises():
-    """Guard 3: Panel parses each session's address with ``parse_query`` (its ``Location``
-    watches ``search``), which raises on 4301 digits (docs/upstream/parse_query_digits.py).
-    Fixed upstream: this fails, and the guard can go."""
-    from panel.io import location
-    from panel.util import parse_query
-
-    source = inspect.getsource(location.Location)
-    assert "parse_query(self.search)" in source
-    assert "self.param.watch(self._update_synced, ['search'])" in source
-    with pytest.raises(ValueError):
-        parse_query("?x=" + "1" * 4301)
-
-
 def test_canary_panels_text_views_make_their_container_when_drawn():
-    """Guard 4 defines ``container`` on the prototype of Panel's markup view; it works
+    """Guard 3 defines ``container`` on the prototype of Panel's markup view; it works
     while Panel's bundle assigns it in ``render`` and declares no class field (which
     would shadow the prototype's property)."""
     import panel

@@ -20,7 +20,7 @@ from hypothesis import strategies as st
 from app.state import ExplorerState
 from app.urlstate import (AVERAGES, BETA_BOUNDS, DEFAULTS, F_N_BOUNDS, K_BOUNDS,
                           MAP_QUANTITIES, MAX_VALUE_CHARS, ORIENTATIONS, RTOLS, TABS, URL_KEYS,
-                          panel_query, parse, serialize)
+                          parse, serialize)
 from model import REGIMES, Params
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -277,18 +277,3 @@ def test_beta_below_the_model_bound_gets_a_notice():
     values, notices = parse("?beta=5e-324")
     assert "beta" not in values and len(notices) == 1 and "0.001" in notices[0]
     assert parse(f"?beta={BETA_BOUNDS[0]!r}")[0]["beta"] == Params(1, 1, beta=BETA_BOUNDS[0]).beta
-
-
-def test_panel_query_reader_is_guarded():
-    """Panel's own reader raises on 4301 digits and on digits int() refuses; the guarded
-    one leaves those values out and reads the rest as Panel does."""
-    from panel.util import parse_query
-
-    for bad in (LONG_DIGITS, "\u00b2", "x" * (MAX_VALUE_CHARS + 1)):
-        search = "?" + urllib.parse.urlencode({"a": "1", "b": bad, "c": "x", "d": "[1, 2]"})
-        if bad != "x" * (MAX_VALUE_CHARS + 1):
-            with pytest.raises(ValueError):
-                parse_query(search)
-        assert panel_query(parse_query)(search) == {"a": 1, "c": "x", "d": [1, 2]}
-    plain = "?k_r=0.5&tab=polar&projector=true&k_r=0.25"
-    assert panel_query(parse_query)(plain) == parse_query(plain)

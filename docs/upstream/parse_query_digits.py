@@ -14,7 +14,9 @@ asked for the address to be parsed.
 Run: ``python docs/upstream/parse_query_digits.py``: opens the page with and without
 ``?x=`` + 4301 digits, moves a slider in the browser, and reports whether the page drew,
 whether the server saw the move, and the errors logged.
-Workaround in this project: ``app/edge.py`` (``guard_query_parsing``).
+Workaround in this project: none needed. The dashboard keeps the address itself
+(``app/views/browser.py``) and is served with ``servable(location=False)`` (``app/main.py``),
+Panel's public switch for its ``Location``: Panel then never parses the address.
 """
 import logging
 import time
