@@ -125,3 +125,29 @@ def test_the_lesson_teaches_the_headline_s_number():
     felt = facts("slider", 90, 1)["uniform_FTx_duration"]
     assert f"*duration-weighted* average ({felt:.3f}, {change_words(felt)})" in q6
     assert "headline" in q6
+
+
+def test_the_folded_numbers_are_written_when_the_card_is_opened(pool):
+    """Folded (the default), the card's tables cost nothing per move: no text is written
+    (no Markdown render, no message); opened, they show the current results at once and
+    then follow every move."""
+    from app.results import SessionResults
+    from app.views.readouts import ReadoutsView
+
+    state = ExplorerState()
+    results = SessionResults(state)
+    results.start()
+    view = ReadoutsView(state=state, results=results)
+    assert view.details.collapsed
+    written = []
+    for pane in (view.fixed_pane, view.uniform_pane):
+        pane.param.watch(lambda event: written.append(event.obj), "object")
+    state.k_r = 0.5
+    assert written == []
+    view.details.collapsed = False
+    assert view.fixed_pane.object == fixed_markdown(results.support)
+    assert view.uniform_pane.object == uniform_markdown(results.uniform, state.average)
+    assert results.support.params.k_r == 0.5
+    state.k_r = 0.7
+    assert view.fixed_pane.object == fixed_markdown(results.support)
+    assert results.support.params.k_r == 0.7

@@ -180,10 +180,25 @@ class ReadoutsView(pn.viewable.Viewer):
                       margin=0), title="Numbers and diagnostics",
             collapsed=True, css_classes=["readout-details"], sizing_mode="stretch_width",
             margin=(6, 5))
+        # The folded card's tables are written when it is opened: text no reader sees
+        # would cost the server a Markdown render and the page a message at every move.
+        self._stale: set[str] = set()
+        self.details.param.watch(lambda event: self._opened(), "collapsed")
         self._compare()
+
+    def _opened(self) -> None:
+        if not self.details.collapsed:
+            stale, self._stale = self._stale, set()
+            if "fixed" in stale:
+                self._on_support()
+            if "uniform" in stale:
+                self._show_uniform()
 
     @param.depends("results.support", watch=True)
     def _on_support(self) -> None:
+        if self.details.collapsed:
+            self._stale.add("fixed")
+            return
         self.fixed_pane.object = fixed_markdown(self.results.support)
 
     @param.depends("results.support", watch=True)
@@ -193,6 +208,9 @@ class ReadoutsView(pn.viewable.Viewer):
 
     @param.depends("results.uniform", "results.errors", "state.average", watch=True)
     def _show_uniform(self) -> None:
+        if self.details.collapsed:
+            self._stale.add("uniform")
+            return
         failed = bool(self.results.errors.get("uniform"))
         self.uniform_pane.object = uniform_markdown(
             None if failed else self.results.uniform, self.state.average,
