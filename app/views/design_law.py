@@ -38,20 +38,22 @@ FORMAT = "CSV: header v [unit],mu (optionally ,mu_err)"
 _NAMES = {"mu_s": "μ_s", "A": "A", "B": "B", "V_s": "V_s"}
 
 
-def read_upload(data: bytes, filename: str = ""):
-    """The ``FrictionCurve`` of an uploaded file's bytes; ``ValueError`` naming what is
-    wrong (empty, too large, not text, too many points, or the line the command line's
-    reader refuses)."""
+def read_upload(data: bytes, filename: str = "", reader=curve_from_text,
+                command: str = "micropillar friction fit FILE.csv"):
+    """The ``FrictionCurve`` of an uploaded file's bytes read by ``reader`` (the command
+    line's: ``curve_from_text``, or ``measured_from_text`` for the structured sample);
+    ``ValueError`` naming what is wrong (empty, too large, not text, too many points, or
+    the line the command line's reader refuses). ``command`` says what takes a larger file."""
     name = filename or "the uploaded file"
     text = upload_text(data, name, MAX_BYTES, f"upload a {FORMAT} file",
-                       "fit it with: micropillar friction fit FILE.csv")
+                       f"use the command line: {command}")
     try:
-        curve = curve_from_text(text, name, source=name)
+        curve = reader(text, name, source=name)
     except CurveFileError as error:
         raise ValueError(str(error)) from None
     if curve.n_points > MAX_POINTS:
-        raise ValueError(f"{name} has {curve.n_points} points, at most {MAX_POINTS} are fitted "
-                         f"here; fit it with: micropillar friction fit FILE.csv --out fit.json")
+        raise ValueError(f"{name} has {curve.n_points} points, at most {MAX_POINTS} are read "
+                         f"here; use the command line: {command}")
     return curve
 
 
