@@ -14,9 +14,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from bokeh.models import HoverTool, Range1d, Span
+from bokeh.models import FixedTicker, HoverTool, Range1d, Span
 
-from .common import BLACK, BLUE, GREY, VERMILION, new_figure, source
+from .common import BLACK, BLUE, GREY, VERMILION, legend_below, new_figure, source
 
 EMPTY = {"speeds_flat": {"v": [], "mu": []},
          "speeds_model": {"v": [], "mu": [], "lo": [], "hi": [], "quad": [], "energy": [],
@@ -84,7 +84,28 @@ def difference_data(comparison):
     return data, (-top, top)
 
 
-def speeds_figure(width: int = 310, height: int = 280):
+def speed_ticks(lo: float, hi: float) -> list[float]:
+    """Ticks 1, 2, 5 x 10^k between ``lo`` and ``hi`` (m/s), only the decades when that makes
+    more than seven, the two ends when fewer than two: a log axis spanning a decade or two
+    otherwise crowds its labels."""
+    k0, k1 = math.floor(math.log10(lo)), math.ceil(math.log10(hi))
+    marks = [(m, m * 10.0 ** k) for k in range(k0, k1 + 1) for m in (1, 2, 5)
+             if lo <= m * 10.0 ** k <= hi]
+    ticks = [t for m, t in marks if len(marks) <= 7 or m == 1]
+    return ticks if len(ticks) >= 2 else [float(f"{lo:.2g}"), float(f"{hi:.2g}")]
+
+
+def set_speed_axis(fig, lo: float, hi: float) -> None:
+    """The V0 axis of either figure from ``lo`` to ``hi`` (m/s), with ``speed_ticks``."""
+    fig.x_range.update(start=lo, end=hi)
+    fig.xaxis[0].ticker.ticks = speed_ticks(lo, hi)
+
+
+def _speed_axis(fig) -> None:
+    fig.xaxis[0].ticker = FixedTicker(ticks=speed_ticks(1e-3, 1.0))
+
+
+def speeds_figure(width: int = 310, height: int = 300):
     """F_T,x/F_N and mu against V0, empty (see the module docstring)."""
     fig = new_figure("design_speeds", "Friction against sliding speed", width, height,
                      x_axis_type="log", x_axis_label="sliding speed V₀ [m/s]",
@@ -96,17 +117,17 @@ def speeds_figure(width: int = 310, height: int = 280):
     fig.segment(x0="v", y0="lo", x1="v", y1="hi", source=model, line_color=BLACK)
     fig.line("v", "mu", source=model, line_color=BLACK, line_width=1.5)
     dots = fig.scatter("v", "mu", source=model, size=6, fill_color=BLACK, line_color=BLACK,
-                       legend_label="pillars, model")
+                       legend_label="pillars (model)")
     measured = source("speeds_measured", EMPTY["speeds_measured"])
     fig.segment(x0="v", y0="lo", x1="v", y1="hi", source=measured, line_color=BLUE)
     fig.scatter("v", "mu", source=measured, size=6, marker="diamond", fill_color="white",
-                line_color=BLUE, legend_label="pillars, measured")
+                line_color=BLUE, legend_label="measured")
     fig.add_tools(HoverTool(renderers=[dots], tooltips=[
         ("V₀", "@v{0.000e} m/s"), ("F_T,x/F_N", "@mu{0.00000}"),
         ("quadrature error", "@quad{0.0e}"),
         ("integration error (energy)", "@energy{0.0e}"), ("status", "@status")]))
-    fig.legend.location = "bottom_right"
-    fig.legend.click_policy = "hide"
+    legend_below(fig)
+    _speed_axis(fig)
     return fig
 
 
@@ -124,4 +145,5 @@ def difference_figure(width: int = 310, height: int = 170):
     fig.add_tools(HoverTool(renderers=[dots], tooltips=[
         ("V₀", "@v{0.000e} m/s"), ("measured − predicted", "@d{0.00000}"),
         ("", "@disagree")]))
+    _speed_axis(fig)
     return fig

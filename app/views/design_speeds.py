@@ -18,7 +18,8 @@ import param
 from model.friction_compare import measured_from_text
 
 from .. import figures as F
-from ..figures.speeds import difference_data, difference_figure, speeds_data, speeds_figure
+from ..figures.speeds import (difference_data, difference_figure, set_speed_axis, speeds_data,
+                              speeds_figure)
 from ..results import SessionResults
 from ..speed_results import speed_words
 from ..state import ExplorerState
@@ -137,7 +138,7 @@ class FrictionSpeedsView(pn.viewable.Viewer):
         def draw():
             F.update(self._sources, {**data, **diff})
             for fig in (self.figure, self.difference):
-                fig.x_range.update(start=xr[0], end=xr[1])
+                set_speed_axis(fig, *xr)
             self.figure.y_range.update(start=yr[0], end=yr[1])
             self.difference.y_range.update(start=dr[0], end=dr[1])
         locked(draw)
