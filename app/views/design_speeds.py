@@ -23,7 +23,7 @@ from ..figures.speeds import (difference_data, difference_figure, set_speed_axis
 from ..results import SessionResults
 from ..speed_results import speed_words
 from ..state import ExplorerState
-from .design_law import FORMAT, read_upload
+from .design_law import FORMAT, curve_input, take_upload
 from .design_upload import plain
 from .layout import INPUT_CSS
 from .locked import locked
@@ -77,10 +77,7 @@ class FrictionSpeedsView(pn.viewable.Viewer):
         self.note = pn.pane.Markdown("", width=300, margin=(0, 5),
                                      styles={"font-size": "0.85em"},
                                      css_classes=["design-speeds"])
-        self.file = pn.widgets.FileInput(accept=".csv,.txt,text/csv,text/plain", width=300,
-                                         margin=(2, 5), css_classes=["design-structured-file"],
-                                         stylesheets=[INPUT_CSS],
-                                         description=f"the structured sample: {FORMAT}")
+        self.file = curve_input("design-structured-file", "the structured sample: ")
         self.compare = pn.pane.Markdown("", width=300, margin=(0, 5),
                                         styles={"font-size": "0.85em"},
                                         css_classes=["design-speeds-compare"])
@@ -95,16 +92,12 @@ class FrictionSpeedsView(pn.viewable.Viewer):
     def _on_file(self, event) -> None:
         if event.new is None:
             return
-        name = self.file.filename or ""
-        self.file.clear()  # so choosing the same file again (edited) is read again
-        try:
-            curve = read_upload(event.new, name, reader=measured_from_text, command=COMMAND)
-        except ValueError as error:
-            self._problem = f"**Not loaded:** {plain(str(error))}. Nothing was changed."
+        curve, self._problem = take_upload(self.file, event.new, reader=measured_from_text,
+                                           command=COMMAND)
+        if curve is None:
             self._redraw()
-            return
-        self._problem = ""
-        self.state.structured_curve = curve
+        else:
+            self.state.structured_curve = curve
 
     @param.depends("results.speed_points", "results.speed_running", "results.speed_note",
                    "results.speed_comparison", "results.speed_compare_note",
