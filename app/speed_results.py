@@ -98,16 +98,21 @@ class SpeedResults(param.Parameterized):
 
     def cancel_speeds(self, quiet: bool = False) -> None:
         """Drop the speeds not computed yet (queued jobs never run)."""
-        self._speed_generation += 1
-        for future in self._speed_futures:
-            future.cancel()
-        self._speed_futures = []
+        self._close_speeds()
         if self.speed_running and not quiet:
             done = sum(p is not None for p in self.speed_points)
             self.speed_note = (f"Cancelled after {done} of {len(self.speed_points)} speeds; "
                                "a speed already running finishes in its worker, ignored.")
         self.speed_running = False
         self._set_busy("speed_curve", False)
+
+    def _close_speeds(self, *_session_context) -> None:
+        """The session ended: queued speeds never run, late ones are ignored; nothing on
+        the page is touched."""
+        self._speed_generation += 1
+        for future in self._speed_futures:
+            future.cancel()
+        self._speed_futures = []
 
     def _drop_speeds(self, *_events) -> None:
         if not self.speed_points and not self.speed_running:
@@ -129,7 +134,7 @@ class SpeedResults(param.Parameterized):
             return
         if doc is not self._speed_doc:
             self._speed_doc = doc
-            doc.on_session_destroyed(lambda _context: self.cancel_speeds(quiet=True))
+            doc.on_session_destroyed(self._close_speeds)
 
         async def one(i, V0, future):
             try:

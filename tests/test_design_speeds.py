@@ -127,3 +127,34 @@ def test_a_speed_past_its_budget_is_said(page, monkeypatch):
     page.results.predict_speeds()
     assert "ran out at 1 m/s" in page.results.speed_note
     assert "1 of 2 speeds computed" in page.results.speed_note
+
+
+def test_cancel_drops_the_speeds_not_started_and_ignores_late_ones(page, pool, monkeypatch):
+    """As on a server, where speeds arrive later: Cancel cancels the jobs not started, says
+    how many had arrived, and a speed that still comes in is not drawn."""
+    import concurrent.futures as cf
+
+    from app.speed_results import SpeedResults
+
+    waiting = []
+
+    def later(lane, key, fn, *args, **options):
+        future = cf.Future()
+        waiting.append((future, fn, args))
+        return future
+    monkeypatch.setattr(pool, "submit", later)
+    monkeypatch.setattr(SpeedResults, "_collect", lambda self, generation, jobs: None)
+    r = page.results
+    page.state.param.update(speeds_range="0.5 m/s..1 m/s", speeds_n=3)
+    r.predict_speeds()
+    assert r.speed_running and len(waiting) == 3 and r.speed_points == [None] * 3
+    assert page.design.speeds.progress.visible and not page.design.speeds.cancel.disabled
+    generation = r._speed_generation
+    page.design.speeds.cancel.clicks += 1
+    assert not r.speed_running and all(f.cancelled() for f, _, _ in waiting)
+    assert r.speed_note.startswith("Cancelled after 0 of 3 speeds")
+    assert page.design.speeds.cancel.disabled and not page.design.speeds.predict.disabled
+    late = cf.Future()
+    late.set_result(waiting[0][1](*waiting[0][2]))
+    r._arrive(generation, 0, 0.5, late)
+    assert r.speed_points == [None] * 3
