@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import json
 import logging
-import math
 import time
 
 import panel as pn
@@ -21,6 +20,7 @@ from .compare import PinnedResults
 from .jobs import work_pool
 from .law_results import LawResults
 from .slot import Request, Slot, client_address
+from .speed_results import SpeedResults
 from .state import DESIGN_KEYS, DIST_KEYS, OPTIMUM_KEYS, ExplorerState
 
 log = logging.getLogger(__name__)
@@ -46,12 +46,12 @@ def optimum_family(state) -> str:
 LOAD_REGIMES = worker.LOAD_REGIMES  # the Fig. 6 curves of the paper's regimes
 
 
-class SessionResults(PinnedResults, LawResults):
+class SessionResults(PinnedResults, LawResults, SpeedResults):
     """Every result one session shows, computed from its ``ExplorerState``.
 
     Views depend on these parameters; the page sets what is ``needed`` (on screen). With a
     pinned state, ``A`` holds its results (``app.compare``); ``side`` is "A" for that one.
-    The Design tab's fitted friction law: ``app.law_results``."""
+    The Design tab's fitted law and speed curve: ``app.law_results``, ``app.speed_results``."""
 
     support = param.ClassSelector(class_=worker.SupportData, allow_None=True, doc=(
         "the support at theta0 during one contact and its fixed array (Support tab)"))
@@ -114,6 +114,7 @@ class SessionResults(PinnedResults, LawResults):
         self._curves = {}
         self._init_pinned(side)
         self._init_law()
+        self._init_speeds()
 
     # ================================================================== Design tab
     # A pillar array in physical units (``state.design_*``) -> its dimensionless point
@@ -334,12 +335,10 @@ class SessionResults(PinnedResults, LawResults):
     # ------------------------------------------------------------------ results
     def _set(self, name: str):
         def apply(value):
-            if name == "support" and value.result is None:
-                # The model raised: say so, keep the last good plots.
+            if name == "support":  # the model raised: say so, keep the last good plots
                 self._set_error(name, value.error)
-                return
-            if name == "support":
-                self._set_error(name, value.error)
+                if value.result is None:
+                    return
             setattr(self, name, value)
         return apply
 

@@ -44,6 +44,8 @@ DESIGN_KEYS = tuple(DESIGN_INPUTS)
 DIST_KEYS = ("dist_family", "dist_deg", "dist_kappa", "dist_psi", "mix_weight", "dist2_family",
              "dist2_deg", "dist2_kappa", "dist_hist")
 assert DIST_KEYS == PINNED_DIST_KEYS, "a pinned state keeps the Design tab's distribution"
+#: The Design tab's friction-velocity curve: default speeds, their number and the most.
+SPEEDS_RANGE, SPEEDS_N, MAX_SPEEDS = "0.1 m/s..1 m/s", 12, 60
 #: Parameters of what "Optimise" seeks on the Design tab.
 OPTIMUM_KEYS = ("opt_objective", "opt_bound")
 #: Parameters of how the page is shown, not of the physics: Reset keeps them.
@@ -176,6 +178,14 @@ class ExplorerState(param.Parameterized):
     friction_curve = param.Parameter(None, doc=(
         "Design tab: the measured friction curve uploaded (a model.FrictionCurve, speeds in "
         "m/s) that the friction law is fitted to; None: none uploaded. Not in the URL."))
+    speeds_range = param.String(SPEEDS_RANGE, doc=(
+        "Design tab: the sliding speeds of the structured surface's friction-velocity "
+        "curve, 'LO..HI' with units (model.speed_curve.parse_speeds). Not in the URL."))
+    speeds_n = param.Integer(SPEEDS_N, bounds=(2, MAX_SPEEDS), doc=(
+        "Design tab: how many speeds, evenly spaced in log. Not in the URL."))
+    structured_curve = param.Parameter(None, doc=(
+        "Design tab: the structured sample's measured friction curve uploaded (a "
+        "model.FrictionCurve, speeds in m/s), compared with the prediction; None: none"))
 
     @property
     def friction_law(self) -> FrictionLaw:

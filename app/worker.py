@@ -260,6 +260,21 @@ def compute_design_array(design, distribution: dict, psi_deg: float = 0.0,
     return result.to_dict()
 
 
+#: Seconds of one speed of the Design tab's friction-velocity curve (``model.speed_curve``):
+#: its quadrature stops refining there and the point says the budget ran out.
+SPEED_POINT_S = 10.0
+
+
+def compute_speed_point(design, V0: float, distribution: dict, psi_deg: float = 0.0,
+                        beta="self"):
+    """``design`` at the sliding speed ``V0`` (m/s) with orientations ``distribution`` (a
+    ``to_dict`` form): ``model.speed_curve.speed_point`` (a ``SpeedPoint``)."""
+    from model.distributions import from_dict
+    from model.speed_curve import speed_point
+    return speed_point(design, V0, from_dict(distribution), psi=math.radians(psi_deg),
+                       beta=beta, tol=DESIGN_TOL, budget=SPEED_POINT_S)
+
+
 #: The optimiser's model evaluations in the dashboard (its default is 200).
 OPTIMUM_EVALUATIONS = 60
 

@@ -9,9 +9,16 @@
   from the same first guess (the best of fit_friction's starts; finite-difference Jacobian,
   covariance only, no warnings). Median [min-max] over repeats, and each one's distance to the true coefficients.
 * A 30-speed friction-velocity curve (``model.speed_curve``) of a von Mises array (mean
-  60 deg, kappa 4) for soft pillars at 0.1-1 m/s, in one process, each run with the
-  model's caches cleared: median [min-max] over ``--repeats`` runs (default 3; target
-  <= 10 s on 2 cores; 5 speeds twice with --quick).
+  60 deg, kappa 4) for soft pillars at 0.1-1 m/s, each run with the model's caches
+  cleared: on two processes (``workers=2``, the command line's default: the speeds are
+  independent, the slowest handed out first) against the best honest alternative, one
+  process (``workers=1``, the serial path), and the slowest single speed (the floor two
+  processes cannot go below). Median [min-max] over ``--repeats`` runs (default 3; target
+  <= 10 s on 2 cores; 5 speeds twice with --quick). Both give the same points, bit for bit
+  (checked here). Where the time goes: the stiffest pillars, at the lowest speeds, cost
+  the most (at 0.1 m/s a few hundred quadrature members, each integrated at every load
+  factor the self-consistent beta iteration tries; 0.1 m/s alone is about half the
+  serial time), so one slow speed bounds what two processes gain.
 
 Timings on a shared, loaded machine are not trustworthy: re-measure on a quiet one.
 """
@@ -93,7 +100,8 @@ def bench_fit(repeats: int) -> dict:
 
 
 def bench_speeds(n: int, repeats: int) -> dict:
-    """``repeats`` runs of an ``n``-speed curve, each with the model's caches cleared."""
+    """``repeats`` runs of an ``n``-speed curve on 2 processes and on 1, and of its slowest
+    speed alone, each with the model's caches cleared."""
     from model.distribution_array import _array
     from model.support import _simulate
 
@@ -101,20 +109,28 @@ def bench_speeds(n: int, repeats: int) -> dict:
                                   F_N="10 uN")
     dist = VonMises(math.radians(60), 4.0)
     friction_velocity(design, [1.0], dist)  # kernel loaded
+    speeds = speed_range(0.1, 1.0, n)
 
     def clear():
         _array.cache_clear()
         _simulate.cache_clear()
 
-    seconds, curve = cold_runs(lambda: friction_velocity(design, speed_range(0.1, 1.0, n), dist),
-                               clear, min_total=0.0, lo=repeats, hi=repeats)
-    return {"n": n, "seconds": seconds, "success": curve.success}
+    out, curves = {"n": n}, {}
+    for name, workers, values in (("two_processes", 2, speeds), ("one_process", 1, speeds),
+                                  ("slowest_speed", 1, speeds[:1])):
+        seconds, curves[name] = cold_runs(
+            lambda: friction_velocity(design, values, dist, workers=workers), clear,
+            min_total=0.0, lo=repeats, hi=repeats)
+        out[name] = seconds
+    out["seconds"] = out["two_processes"]
+    out["success"] = curves["two_processes"].success
+    out["same_points"] = curves["two_processes"].points == curves["one_process"].points
+    return out
 
 
-def report(fit: dict, speeds: dict) -> str:
-    cpu = platform.processor() or platform.machine()
-    lines = [f"# Friction-law fit ({platform.node()}, {cpu})", "",
-             f"{N_POINTS} points, noise {NOISE}; seconds median [min–max] over "
+def fit_lines(fit: dict) -> list[str]:
+    """The fit's table: each method's seconds, error and convergence."""
+    lines = [f"{N_POINTS} points, noise {NOISE}; seconds median [min–max] over "
              f"{fit['fit_friction']['runs']} draws (target <= 1 s).", "",
              "| method | seconds | largest relative error | converged |", "|---|---|---|---|"]
     for name, r in fit.items():
@@ -122,12 +138,28 @@ def report(fit: dict, speeds: dict) -> str:
         lines.append(f"| {name} | {cell(s['median'], s['min'], s['max'])} | "
                      f"{cell(e['median'], e['min'], e['max'], lambda x: f'{x:.2g}')} | "
                      f"{r['converged']}/{r['runs']} |")
-    t = speeds["seconds"]
-    lines += ["", f"Friction-velocity curve, von Mises array, {speeds['n']} speeds, one "
-                  f"process: {cell(t['median'], t['min'], t['max'], lambda x: f'{x:.2f}')} s "
-                  f"(median [min–max] over {t['n']} runs, cold caches; target <= 10 s for 30), "
-                  f"all speeds succeeded: {speeds['success']}", "",
-              "Measured on a shared machine: re-measure on a quiet one before quoting."]
+    return lines
+
+
+def speeds_lines(speeds: dict) -> list[str]:
+    """The friction-velocity curve's table: 2 processes, 1 process, the slowest speed."""
+    lines = [f"Friction-velocity curve, von Mises array, {speeds['n']} speeds, cold caches; "
+             f"seconds median [min–max] over {speeds['seconds']['n']} runs (target <= 10 s "
+             f"for 30 on 2 cores):", "", "| path | seconds |", "|---|---|"]
+    for name, words in (("two_processes", "2 processes (workers=2, the default)"),
+                        ("one_process", "1 process (workers=1, serial)"),
+                        ("slowest_speed", "the slowest speed alone (the floor of 2)")):
+        t = speeds[name]
+        lines.append(f"| {words} | {cell(t['median'], t['min'], t['max'], lambda x: f'{x:.2f}')} |")
+    return lines + ["", f"All speeds succeeded: {speeds['success']}; the same points on 1 "
+                        f"and 2 processes: {speeds['same_points']}."]
+
+
+def report(fit: dict, speeds: dict) -> str:
+    cpu = platform.processor() or platform.machine()
+    lines = [f"# Friction-law fit ({platform.node()}, {cpu})", "", *fit_lines(fit), "",
+             *speeds_lines(speeds), "",
+             "Measured on a shared machine: re-measure on a quiet one before quoting."]
     return "\n".join(lines) + "\n"
 
 

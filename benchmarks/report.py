@@ -20,7 +20,9 @@ from pathlib import Path
 #: The file each benchmark of ``run_all.py`` writes, and its section's title.
 OUTPUTS = {"bench_support.py": ("support.json", "This run: one support against scipy"),
            "bench_arrays.py": ("arrays.json", "This run: arrays and regime maps"),
-           "bench_dashboard.py": ("dashboard.json", "This run: the dashboard")}
+           "bench_dashboard.py": ("dashboard.json", "This run: the dashboard"),
+           "bench_friction_fit.py": ("friction_fit.json",
+                                     "This run: the friction-law fit and a friction-velocity curve")}
 
 
 def demote(markdown: str, levels: int = 1) -> str:
@@ -51,8 +53,13 @@ def dashboard_section(data: dict) -> str:
     return table(data["server"], data["browser"], data["server_cost"])
 
 
+def friction_section(data: dict) -> str:
+    from bench_friction_fit import fit_lines, speeds_lines
+    return "\n".join([*fit_lines(data["fit"]), "", *speeds_lines(data["speeds"])]) + "\n"
+
+
 SECTIONS = {"bench_support.py": support_section, "bench_arrays.py": arrays_section,
-            "bench_dashboard.py": dashboard_section}
+            "bench_dashboard.py": dashboard_section, "bench_friction_fit.py": friction_section}
 
 
 def load(values) -> str:

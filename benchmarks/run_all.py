@@ -3,10 +3,10 @@
     python benchmarks/run_all.py [--quick] [--out DIR] [--no-browser] [--only SCRIPT ...]
                                  [--report PAGE]
 
-Runs bench_support.py, bench_arrays.py and bench_dashboard.py in turn (never side by
-side: they time things), each in its own interpreter, importing the installed package
-(``pip install -e .``) and writing to DIR (default bench-out). Prints, and writes to
-DIR/run_all.json, the machine (CPU, cores, versions), the date, each script's wall time
+Runs bench_support.py, bench_arrays.py, bench_dashboard.py and bench_friction_fit.py in
+turn (never side by side: they time things), each in its own interpreter, importing the
+installed package (``pip install -e .``) and writing to DIR (default bench-out). Prints,
+and writes to DIR/run_all.json, the machine (CPU, cores, versions), the date, each script's wall time
 and CPU time (user + sys of the script and its child processes) and the machine's load
 average before and after each script: on a shared machine the wall time grows with the
 other load, the CPU time much less. ``--report PAGE`` then writes the Markdown report
@@ -27,7 +27,7 @@ import report
 from machine import loadavg, machine
 
 HERE = Path(__file__).resolve().parent
-SCRIPTS = ("bench_support.py", "bench_arrays.py", "bench_dashboard.py")
+SCRIPTS = ("bench_support.py", "bench_arrays.py", "bench_dashboard.py", "bench_friction_fit.py")
 
 
 def children_cpu() -> float:

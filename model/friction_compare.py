@@ -26,10 +26,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .friction_curve import CurveFileError, FrictionCurve, read_curve
+from .friction_curve import CurveFileError, FrictionCurve, curve_from_text
 
-__all__ = ["FrictionComparison", "compare_friction", "read_measured", "DEFAULT_MU_ERR",
-           "N_SIGMA"]
+__all__ = ["FrictionComparison", "compare_friction", "read_measured", "measured_from_text",
+           "DEFAULT_MU_ERR", "N_SIGMA"]
 
 #: The measurement's standard error of mu assumed when the file has no mu_err column
 #: (an assumption, not a property of any instrument: give mu_err when it is known).
@@ -174,12 +174,24 @@ def read_measured(path, v_unit: str | None = None) -> FrictionCurve:
     errors), refusing a zero speed (the model needs sliding) with the line that holds it:
     ``CurveFileError``."""
     from .files import read_user_text
+
+    try:
+        text = read_user_text(path, "CSV")
+    except ValueError as error:
+        raise CurveFileError(str(error)) from None
+    return measured_from_text(text, Path(path).name, v_unit, source=str(path))
+
+
+def measured_from_text(text: str, name: str, v_unit: str | None = None,
+                       source: str = "") -> FrictionCurve:
+    """The structured sample's measured curve in the CSV ``text`` of the file ``name`` (as
+    ``read_measured`` reads a file, e.g. an upload's content); ``CurveFileError``."""
     from .histogram_csv import data_rows
 
-    curve = read_curve(path, v_unit=v_unit)
+    curve = curve_from_text(text, name, v_unit, source=source)
     zero = np.flatnonzero(curve.v <= 0)
     if zero.size:
-        line = data_rows(read_user_text(path, "CSV"))[1 + int(zero[0])][0]
-        raise CurveFileError(f"{Path(path).name} line {line}: v = 0; the structured surface "
+        line = data_rows(text)[1 + int(zero[0])][0]
+        raise CurveFileError(f"{name} line {line}: v = 0; the structured surface "
                              f"is predicted at sliding speeds above zero: drop this row")
     return curve

@@ -31,15 +31,16 @@ class SweepCancelled(Exception):
 
 
 def run_points(func, tasks, workers: int = 1, scheduler=None, progress=None,
-               cancel=None, sizes=None) -> list:
+               cancel=None, sizes=None, on_row=None) -> list:
     """``[func(t) for t in tasks]``, on ``workers`` local processes or on ``scheduler``.
 
     ``func`` must be a module-level function (it is pickled by reference); ``scheduler``
     is a ``dask.distributed.Client`` or the address of a scheduler ("tcp://host:8786").
     ``sizes`` (one int per task, e.g. the points of a chain of points) makes
-    ``progress`` count those instead of tasks.
+    ``progress`` count those instead of tasks. ``on_row(i, row)`` is called in the calling
+    thread as each task's result arrives (in the order they finish).
     """
-    out = _Rows(len(tasks), progress, cancel, sizes)
+    out = _Rows(len(tasks), progress, cancel, sizes, on_row)
     out.check()
     # Tasks that are chains of points already carry enough work each: sent one by one,
     # the pool balances them (a slow chain does not hold back three others).
@@ -62,7 +63,8 @@ def _run_chunk(func, tasks) -> list:
 class _Rows:
     """Results in task order, with the progress callback and the cancel check."""
 
-    def __init__(self, total, progress, cancel, sizes=None):
+    def __init__(self, total, progress, cancel, sizes=None, on_row=None):
+        self.on_row = on_row
         self.sizes = [1] * total if sizes is None else list(sizes)
         self.rows, self.done, self.total = [None] * total, 0, sum(self.sizes)
         self.progress, self.cancel = progress, cancel
@@ -70,6 +72,8 @@ class _Rows:
     def add(self, indices, rows) -> None:
         for i, row in zip(indices, rows):
             self.rows[i] = row
+            if self.on_row is not None:
+                self.on_row(i, row)
             for _ in range(self.sizes[i]):  # one call per point, as documented
                 self.done += 1
                 if self.progress is not None:

@@ -19,8 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["SpeedPoint", "SpeedCurve", "friction_velocity", "parse_speeds", "speed_range",
-           "check_own_V_s"]
+__all__ = ["SpeedPoint", "SpeedCurve", "friction_velocity", "speed_point", "parse_speeds",
+           "speed_range", "check_own_V_s", "check_speeds"]
 
 
 @dataclass(frozen=True)
@@ -71,40 +71,66 @@ def check_own_V_s(design) -> None:
                          "or a fitted law")
 
 
-def friction_velocity(design, speeds, distribution=None, psi: float = 0.0, beta="self",
-                      tol: float = 1e-3, budget: float | None = None,
-                      on_point=None) -> SpeedCurve:
-    """``design`` at each of ``speeds`` (m/s): the module doc. ``budget`` (seconds) bounds
-    each speed's evaluation; ``on_point(i, point)`` is called as each speed finishes."""
+def speed_point(design, V0: float, distribution=None, psi: float = 0.0, beta="self",
+                tol: float = 1e-3, budget: float | None = None) -> SpeedPoint:
+    """``design`` evaluated at the one sliding speed ``V0`` (m/s): the module doc. A speed
+    the model cannot reach is a point with its reason; a bad ``tol``, ``beta``, ``budget``
+    or ``psi`` raises ``ValueError``. The app computes its curve point by point with this."""
     from .design_point import evaluate, model_params
     from .friction import mu0
     from .units import ureg
 
     check_own_V_s(design)
-    speeds = np.asarray(speeds, dtype=float)
-    if speeds.ndim != 1 or speeds.size == 0 or not np.all(np.isfinite(speeds) & (speeds > 0)):
+    V0 = float(V0)
+    flat = float(design.friction_law.mu(V0))
+    at_speed = design.replace(V0=ureg.Quantity(V0, "m/s"))
+    try:
+        r = evaluate(at_speed, distribution, psi=psi, beta=beta, tol=tol, budget=budget)
+    except ValueError as error:
+        if str(error).startswith(("tol=", "beta=", "budget=", "psi=")):
+            raise
+        return SpeedPoint(V0, flat, math.nan, math.nan, math.nan, False, "outside_range",
+                          str(error))
+    m0, a = mu0(model_params(at_speed)), r.array  # = mu(V0) of the design's law
+    return SpeedPoint(V0, flat, float(a.FTx_over_mu0FN * m0),
+                      float(a.quadrature_error["FTx_over_mu0FN"] * m0),
+                      float(a.integration_error), r.success, r.status, a.message)
+
+
+def _speed_task(task) -> SpeedPoint:
+    """``speed_point`` of one task tuple (module level: sent to worker processes)."""
+    design, V0, distribution, psi, beta, tol, budget = task
+    return speed_point(design, V0, distribution, psi, beta, tol, budget)
+
+
+def check_speeds(speeds) -> np.ndarray:
+    """``speeds`` (m/s) sorted, as a 1-d array; ``ValueError`` unless finite and > 0."""
+    values = np.asarray(speeds, dtype=float)
+    if values.ndim != 1 or values.size == 0 or not np.all(np.isfinite(values) & (values > 0)):
         raise ValueError(f"speeds={speeds!r} must be finite speeds > 0 (m/s)")
-    law = design.friction_law
-    start, points = time.perf_counter(), []
-    for i, V0 in enumerate(np.sort(speeds)):
-        flat = float(law.mu(V0))
-        at_speed = design.replace(V0=ureg.Quantity(float(V0), "m/s"))
-        try:
-            r = evaluate(at_speed, distribution, psi=psi, beta=beta, tol=tol, budget=budget)
-        except ValueError as error:
-            if str(error).startswith(("tol=", "beta=", "budget=", "psi=")):
-                raise
-            point = SpeedPoint(float(V0), flat, math.nan, math.nan, math.nan, False,
-                               "outside_range", str(error))
-        else:
-            m0, a = mu0(model_params(at_speed)), r.array  # = mu(V0) of the design's law
-            point = SpeedPoint(float(V0), flat, float(a.FTx_over_mu0FN * m0),
-                               float(a.quadrature_error["FTx_over_mu0FN"] * m0),
-                               float(a.integration_error), r.success, r.status, a.message)
-        points.append(point)
-        if on_point is not None:
-            on_point(i, point)
-    return SpeedCurve(law=law.to_dict(), points=tuple(points),
+    return np.sort(values)
+
+
+def friction_velocity(design, speeds, distribution=None, psi: float = 0.0, beta="self",
+                      tol: float = 1e-3, budget: float | None = None,
+                      on_point=None, workers: int = 1) -> SpeedCurve:
+    """``design`` at each of ``speeds`` (m/s): the module doc. ``budget`` (seconds) bounds
+    each speed's evaluation; ``on_point(i, point)`` is called as each speed finishes (in
+    the order they finish). ``workers`` > 1 computes the speeds on that many local
+    processes (``model.parallel.run_points``), the slowest (lowest) speeds handed out
+    first; every point is the one ``workers=1`` gives (each speed is independent)."""
+    from .parallel import run_points
+    from .validation import whole
+
+    check_own_V_s(design)
+    speeds = check_speeds(speeds)
+    workers = whole("workers", workers, 1)
+    tasks = [(design, float(V0), distribution, psi, beta, tol, budget) for V0 in speeds]
+    start = time.perf_counter()
+    workers = min(workers, len(tasks))
+    points = run_points(_speed_task, tasks, workers=workers,
+                        sizes=None if workers == 1 else [1] * len(tasks), on_row=on_point)
+    return SpeedCurve(law=design.friction_law.to_dict(), points=tuple(points),
                       seconds=time.perf_counter() - start)
 
 

@@ -54,12 +54,12 @@ def _private_disk_cache(tmp_path_factory):
 def pool(monkeypatch):
     """Every dashboard computation run here and now (``fakes.InProcessPool``), recorded."""
     from app import results as results_module
-    from app import slot
+    from app import slot, speed_results
     from fakes import InProcessPool
 
     pool = InProcessPool()
-    monkeypatch.setattr(slot, "work_pool", lambda: pool)
-    monkeypatch.setattr(results_module, "work_pool", lambda: pool)
+    for module in (slot, results_module, speed_results):
+        monkeypatch.setattr(module, "work_pool", lambda: pool)
     return pool
 
 

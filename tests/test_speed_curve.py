@@ -94,9 +94,29 @@ def test_cli_prints_the_curve_and_its_json_agrees_with_the_api(capsys):
     assert code == 0 and len(rows) == 3 and "mu flat" in out
 
 
+def test_two_processes_give_every_point_of_one_and_report_each_as_it_finishes():
+    speeds = speed_range(0.1, 1.0, 4)
+    serial = friction_velocity(DESIGN, speeds, VM)
+    seen = []
+    parallel = friction_velocity(DESIGN, speeds[::-1], VM, workers=2,
+                                 on_point=lambda i, p: seen.append((i, p)))
+    assert parallel.points == serial.points  # bit for bit, in increasing speed
+    assert sorted(i for i, _ in seen) == [0, 1, 2, 3]
+    assert all(parallel.points[i] == p for i, p in seen)
+
+
+def test_cli_rows_come_in_increasing_speed_with_two_processes(capsys):
+    code, out, _ = _run(capsys, *ARGS, "--V-s", "1 mm/s", "--speeds", "0.1m/s..1m/s",
+                        "--n", "4", "--orientation", "fixed", "--workers", "2")
+    speeds = [float(line.split()[0]) for line in out.splitlines()
+              if line.strip()[:1].isdigit()]
+    assert code == 0 and speeds == sorted(speeds) and len(speeds) == 4
+
+
 @pytest.mark.parametrize("extra, flag", [
     (["--speeds", "1m/s..0.1m/s"], "--speeds"), (["--speeds", "0.1m/s..1m/s", "--n", "1"], "--n"),
-    (["--n", "3"], "--n"), (["--speeds", "0.1m/s..1m/s"], "--V-s")])
+    (["--n", "3"], "--n"), (["--speeds", "0.1m/s..1m/s"], "--V-s"), (["--workers", "2"], "--workers"),
+    (["--V-s", "1mm/s", "--speeds", "0.1m/s..1m/s", "--workers", "0"], "--workers")])
 def test_cli_bad_speed_flags_are_one_line(capsys, extra, flag):
     code, out, err = _run(capsys, *ARGS, *extra)
     assert code == 2 and out == "" and len(err.strip().splitlines()) == 1

@@ -31,6 +31,7 @@ from ..urlstate import DESIGN_INPUTS, LAW_INPUTS
 from .compare_tables import design_compare_markdown, distribution_words
 from .design_law import FrictionLawView
 from .design_readouts import DesignReadouts
+from .design_speeds import FrictionSpeedsView
 from .design_upload import HistogramUpload
 from .layout import INPUT_CSS, PHONE, TOP, WIDE, grid_css, mode_classes, projector_grid
 from .locked import locked as _locked
@@ -110,6 +111,7 @@ class DesignView(pn.viewable.Viewer):
         super().__init__(**params)
         s = self.state
         self.law = FrictionLawView(state=s, results=self.results)
+        self.speeds = FrictionSpeedsView(state=s, results=self.results)
         self.inputs = {name: pn.widgets.TextInput.from_param(
             s.param[name], **caption(label), width=94, margin=(0, 3),
             css_classes=[f"ctl-{name}"]) for name, (_, _, label, _) in DESIGN_INPUTS.items()
@@ -345,6 +347,7 @@ class DesignView(pn.viewable.Viewer):
         grid = pn.GridBox(*self.inputs.values(), ncols=3, margin=(0, 0))
         left = pn.Column(pn.pane.Markdown("**Pillar array** (values with units)",
                                           margin=(0, 5)), grid, self.point_text, self.law,
+                         self.speeds,
                          width=315,
                          css_classes=["design-inputs"])
         projector = self.state.projector

@@ -38,21 +38,42 @@ FORMAT = "CSV: header v [unit],mu (optionally ,mu_err)"
 _NAMES = {"mu_s": "μ_s", "A": "A", "B": "B", "V_s": "V_s"}
 
 
-def read_upload(data: bytes, filename: str = ""):
-    """The ``FrictionCurve`` of an uploaded file's bytes; ``ValueError`` naming what is
-    wrong (empty, too large, not text, too many points, or the line the command line's
-    reader refuses)."""
+def read_upload(data: bytes, filename: str = "", reader=curve_from_text,
+                command: str = "micropillar friction fit FILE.csv"):
+    """The ``FrictionCurve`` of an uploaded file's bytes read by ``reader`` (the command
+    line's: ``curve_from_text``, or ``measured_from_text`` for the structured sample);
+    ``ValueError`` naming what is wrong (empty, too large, not text, too many points, or
+    the line the command line's reader refuses). ``command`` says what takes a larger file."""
     name = filename or "the uploaded file"
     text = upload_text(data, name, MAX_BYTES, f"upload a {FORMAT} file",
-                       "fit it with: micropillar friction fit FILE.csv")
+                       f"use the command line: {command}")
     try:
-        curve = curve_from_text(text, name, source=name)
+        curve = reader(text, name, source=name)
     except CurveFileError as error:
         raise ValueError(str(error)) from None
     if curve.n_points > MAX_POINTS:
-        raise ValueError(f"{name} has {curve.n_points} points, at most {MAX_POINTS} are fitted "
-                         f"here; fit it with: micropillar friction fit FILE.csv --out fit.json")
+        raise ValueError(f"{name} has {curve.n_points} points, at most {MAX_POINTS} are read "
+                         f"here; use the command line: {command}")
     return curve
+
+
+def curve_input(css_class: str, what: str = "") -> pn.widgets.FileInput:
+    """A file input for a friction curve (``FORMAT``), ``what`` naming whose."""
+    return pn.widgets.FileInput(accept=".csv,.txt,text/csv,text/plain", width=300,
+                                margin=(2, 5), css_classes=[css_class], stylesheets=[INPUT_CSS],
+                                description=f"{what}{FORMAT}; at most {MAX_POINTS} points")
+
+
+def take_upload(file: pn.widgets.FileInput, data: bytes, **read):
+    """``(curve, "")`` of the bytes ``data`` just uploaded to ``file`` (``read_upload``
+    with ``read``), or ``(None, the problem in Markdown)``; ``file`` is emptied, so choosing
+    the same file again (edited) is read again."""
+    name = file.filename or ""
+    file.clear()
+    try:
+        return read_upload(data, name, **read), ""
+    except ValueError as error:
+        return None, f"**Not loaded:** {plain(str(error))}. Nothing was changed."
 
 
 def _speed(values) -> tuple[float, str]:
@@ -95,10 +116,7 @@ class FrictionLawView(pn.viewable.Viewer):
         self.inputs = {name: pn.widgets.TextInput.from_param(
             s.param[name], **caption(DESIGN_INPUTS[name][2]), width=145, margin=(0, 3),
             css_classes=[f"ctl-{name}"], stylesheets=[INPUT_CSS]) for name in LAW_INPUTS}
-        self.file = pn.widgets.FileInput(accept=".csv,.txt,text/csv,text/plain", width=300,
-                                         margin=(2, 5), css_classes=["design-friction-file"],
-                                         stylesheets=[INPUT_CSS],
-                                         description=f"{FORMAT}; at most {MAX_POINTS} points")
+        self.file = curve_input("design-friction-file")
         self.note = pn.pane.Markdown("", width=300, margin=(0, 5),
                                      styles={"font-size": "0.85em"},
                                      css_classes=["design-friction"])
@@ -113,16 +131,11 @@ class FrictionLawView(pn.viewable.Viewer):
     def _on_file(self, event) -> None:
         if event.new is None:
             return
-        name = self.file.filename or ""
-        self.file.clear()  # so choosing the same file again (edited) is read again
-        try:
-            curve = read_upload(event.new, name)
-        except ValueError as error:
-            self._problem = f"**Not loaded:** {plain(str(error))}. Nothing was changed."
+        curve, self._problem = take_upload(self.file, event.new)
+        if curve is None:
             self._redraw()
-            return
-        self._problem = ""
-        self.state.friction_curve = curve
+        else:
+            self.state.friction_curve = curve
 
     @param.depends("results.friction_fit", *(f"state.{n}" for n in LAW_INPUTS),
                    "state.design_V0", watch=True)

@@ -12,6 +12,9 @@ from ._common import UsageError, fmt, jsonable, whole
 
 #: Default number of speeds of --speeds.
 N_SPEEDS = 30
+#: Default local processes of --speeds and --compare: the speeds are independent, and
+#: two cores halve a long curve's time (one process: --workers 1).
+N_WORKERS = 2
 
 
 def add_arguments(group) -> None:
@@ -20,6 +23,9 @@ def add_arguments(group) -> None:
                             "'0.1mm/s..1m/s' (the design's V0 is replaced; needs V_s)")
     group.add_argument("--n", type=whole, default=None, metavar="N",
                        help=f"with --speeds: speeds, evenly spaced in log (default {N_SPEEDS})")
+    group.add_argument("--workers", type=whole, default=None, metavar="N",
+                       help=f"with --speeds or --compare: local processes computing the speeds "
+                            f"(default {N_WORKERS})")
 
 
 def speeds(args):
@@ -27,7 +33,11 @@ def speeds(args):
     if args.speeds is None:
         if args.n is not None:
             raise UsageError("--n", "only with --speeds")
+        if args.workers is not None and getattr(args, "compare", None) is None:
+            raise UsageError("--workers", "only with --speeds or --compare")
         return None
+    if args.workers is not None and args.workers < 1:
+        raise UsageError("--workers", f"{args.workers} must be at least 1")
     try:
         lo, hi = parse_speeds(args.speeds)
         return speed_range(lo, hi, N_SPEEDS if args.n is None else args.n)
@@ -53,18 +63,36 @@ def predict(args, design, distribution, values, on_point=None):
     try:
         return friction_velocity(design, values, distribution, beta=args.beta,
                                  tol=1e-3 if args.tol is None else args.tol,
-                                 budget=args.budget, on_point=on_point)
+                                 budget=args.budget, on_point=on_point,
+                                 workers=N_WORKERS if args.workers is None else args.workers)
     except ValueError as error:
-        flag = {"V_s": "--V-s", "tol": "--tol", "beta": "--beta", "budget": "--budget"}
+        flag = {"V_s": "--V-s", "tol": "--tol", "beta": "--beta", "budget": "--budget",
+                "workers": "--workers"}
         name = str(error).split("=", 1)[0]
         raise UsageError(flag.get(name), str(error)) from None
 
 
 def progress(total: int):
     """``on_point`` that counts finished speeds on a terminal's stderr."""
+    done = [0]
+
     def show(i, point):
+        done[0] += 1
         if sys.stderr.isatty():
-            print(f"\r{i + 1}/{total} speeds", end="", file=sys.stderr, flush=True)
+            print(f"\r{done[0]}/{total} speeds", end="", file=sys.stderr, flush=True)
+    return show
+
+
+def in_order(emit):
+    """``on_point`` that calls ``emit(point)`` in increasing speed, each as soon as every
+    slower speed has finished (the speeds finish in any order on several processes)."""
+    waiting, following = {}, [0]
+
+    def show(i, point):
+        waiting[i] = point
+        while following[0] in waiting:
+            emit(waiting.pop(following[0]))
+            following[0] += 1
     return show
 
 
@@ -78,8 +106,8 @@ def run(args, design, distribution, values) -> int:
               f"B {fmt(law.B)}, V_s {fmt(law.V_s)} m/s)")
         print("+- quadrature error of F_T,x/F_N; energy: relative energy-balance residual")
         print(_HEAD, flush=True)
-    show = progress(len(values)) if args.json else (
-        lambda i, point: print(_row(point), flush=True))
+    show = progress(len(values)) if args.json else in_order(
+        lambda point: print(_row(point), flush=True))
     curve = predict(args, design, distribution, values, on_point=show)
     if args.json:
         if sys.stderr.isatty():
