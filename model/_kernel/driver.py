@@ -43,6 +43,17 @@ SCAN_POINTS = 8
 # err^-(1/q - 0.75 BETA) * err_old^BETA (q = 5 or 8), which damps the accept/reject oscillation.
 PI_BETA = 0.04
 LOG_EN_FLOOR = math.log(1e-4)  # err_old is taken as at least 1e-4
+# Step-size factors (scipy's MIN_FACTOR/MAX_FACTOR; Hairer's DOPRI5/DOP853 use 0.2 and 10,
+# his RODAS 6): a step shrinks at most 5-fold after a rejection, grows at most MAX_FACTOR_*.
+MIN_FACTOR = 0.2
+MAX_FACTOR_EXPLICIT = 10.0
+MAX_FACTOR_IMPLICIT = 6.0
+# Hairer's DOPRI5/DOP853: this many non-stiff steps in a row clear the stiffness count.
+NONSTIFF_RESET = 6
+# The smallest step: this many units of roundoff of the time (Hairer's codes use 10-16).
+HMIN_ULPS = 16.0
+# After falling back to the other method at the smallest step, it starts this much larger.
+FALLBACK_STEP = 1e6
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -167,14 +178,14 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record, high):
         if y[TAU] >= tau_max:
             status = TIME_BUDGET
             break
-        hmin = 16.0 * 2.220446049250313e-16 * max(1.0, abs(t))
+        hmin = HMIN_ULPS * 2.220446049250313e-16 * max(1.0, abs(t))
         if h < hmin:
             if method == 0 and not fell_back:
                 # The other method may resolve what this one cannot (pivot passage).
                 fell_back = True
                 implicit = not implicit
                 stats[ST_SWITCH] += 1
-                h = 1e6 * hmin
+                h = FALLBACK_STEP * hmin
                 continue
             status = NONFINITE if nonfinite else STEP_UNDERFLOW
             break
@@ -186,24 +197,24 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record, high):
             ok = rodas4.step(y, f, h, P, J, M, piv, Kr, ynew, err, ystage, b)
             en = _err_norm(err, y, ynew, rtol, atol) if ok else np.inf
             expo = 1.0 / rodas4.ORDER
-            maxfac = 6.0
+            maxfac = MAX_FACTOR_IMPLICIT
         elif high:
             dop853.step(y, f, h, P, K, ynew, ystage)
             dense_done = False
             stats[ST_RHS] += 12
             en = dop853.error_norm(h, K, y, ynew, rtol, atol)
             expo = 1.0 / dop853.ORDER
-            maxfac = 10.0
+            maxfac = MAX_FACTOR_EXPLICIT
         else:
             dopri5.step(y, f, h, P, K, ynew, err, ystage)
             stats[ST_RHS] += 6
             en = _err_norm(err, y, ynew, rtol, atol)
             expo = 1.0 / dopri5.ORDER
-            maxfac = 10.0
+            maxfac = MAX_FACTOR_EXPLICIT
         if en > 1.0 and not finishing:
             stats[ST_REJ] += 1
             nonfinite = en == np.inf
-            h *= 0.2 if nonfinite else max(0.2, SAFETY * math.exp(-expo * math.log(en)))
+            h *= MIN_FACTOR if nonfinite else max(MIN_FACTOR, SAFETY * math.exp(-expo * math.log(en)))
             last_rejected = True
             continue
         nonfinite = False
@@ -263,7 +274,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record, high):
                     switched = True
             else:
                 nonstiff += 1
-                if nonstiff >= 6:
+                if nonstiff >= NONSTIFF_RESET:
                     stiff = 0
         if switched:
             stats[ST_SWITCH] += 1
@@ -288,7 +299,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record, high):
         elif implicit:
             fac = min(maxfac, SAFETY * math.exp(-expo * log_en))
         else:
-            fac = min(maxfac, max(0.2, SAFETY * math.exp(
+            fac = min(maxfac, max(MIN_FACTOR, SAFETY * math.exp(
                 -(expo - 0.75 * PI_BETA) * log_en + PI_BETA * log_en_old)))
         log_en_old = max(log_en, LOG_EN_FLOOR)
         if last_rejected:
