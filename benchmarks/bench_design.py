@@ -35,7 +35,7 @@ from model._kernel import warmup
 from model.beta import solve_beta_scalar
 from model.contacts import run_contacts
 from model.design import optimise
-from model.distribution_array import _array, distribution_array
+from model.distribution_array import _cached_array, distribution_array
 from model.distributions import Uniform, VonMises
 from model.friction import mu0
 from model.options import SolverOptions
@@ -48,7 +48,7 @@ VM = VonMises(math.radians(60), 4.0)
 
 def _clear():
     _simulate.cache_clear()
-    _array.cache_clear()
+    _cached_array.cache_clear()
     design_module._CACHE.clear()
 
 

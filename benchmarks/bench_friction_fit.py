@@ -102,7 +102,7 @@ def bench_fit(repeats: int) -> dict:
 def bench_speeds(n: int, repeats: int) -> dict:
     """``repeats`` runs of an ``n``-speed curve on 2 processes and on 1, and of its slowest
     speed alone, each with the model's caches cleared."""
-    from model.distribution_array import _array
+    from model.distribution_array import _cached_array
     from model.support import _simulate
 
     design = PillarDesign.example(E="1 MPa", V0="1 m/s", V_s="1 mm/s", L_x="0.1 mm",
@@ -112,7 +112,7 @@ def bench_speeds(n: int, repeats: int) -> dict:
     speeds = speed_range(0.1, 1.0, n)
 
     def clear():
-        _array.cache_clear()
+        _cached_array.cache_clear()
         _simulate.cache_clear()
 
     out, curves = {"n": n}, {}

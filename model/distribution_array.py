@@ -91,12 +91,11 @@ def distribution_array(params: Params, distribution: Distribution | None = None,
     args = (params.replace(theta0=0.0), distribution, psi, beta == "self", float(tol), options,
             int(max_intervals))
     if budget is None:
-        return _array(*args, None)
+        return _cached_array(*args, None)
     # A budgeted result depends on the machine's speed: computed afresh, never cached.
-    return _array.__wrapped__(*args, float(budget))
+    return _array(*args, float(budget))
 
 
-@lru_cache(maxsize=512)
 def _array(params, distribution, psi, self_consistent, tol, options, max_intervals, budget):
     start = time.perf_counter()
     dist = rotated(distribution, psi)
@@ -231,6 +230,11 @@ def _array(params, distribution, psi, self_consistent, tol, options, max_interva
                     atoms, quad, m0, counter, beta_iter, beta_res, options,
                     time.perf_counter() - start, budget if (out_of_time or beta_cut) else None,
                     beta_cut, atom_filled)
+
+
+#: Arrays without a time budget, by their arguments (the cache the dashboard's sessions
+#: share in a process; ``_cached_array.cache_clear()`` empties it).
+_cached_array = lru_cache(maxsize=512)(_array)
 
 
 class _Unsolvable(Exception):

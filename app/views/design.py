@@ -17,6 +17,7 @@ import time
 import panel as pn
 import param
 
+from model.regimes import EXPLORED_MAP
 from model.shipped_map import load_regime_map
 
 from .. import figures as F
@@ -79,9 +80,10 @@ FAMILY_LABELS = {"von Mises": "vonmises", "pair ±θ₀": "pair", "fixed θ₀":
 OBJECTIVE_LABELS = {"least F_T,x": "min-FTx", "largest |F_T,y|": "max-FTy"}
 #: What the bound of each objective limits (a force over μ₀F_N).
 BOUND_OF = {"min-FTx": "|F_T,y|", "max-FTy": "F_T,x"}
+_LO, _HI = EXPLORED_MAP
 STATUS_WORDS = {"in_map": "inside the paper's explored map",
-                "outside_map": "outside the paper's explored map [0.01, 3]² (same model, "
-                               "beyond the paper's figures)",
+                "outside_map": f"outside the paper's explored map [{_LO:g}, {_HI:g}]² (same "
+                               "model, beyond the paper's figures)",
                 "scaled": "beyond the model range: computed scaled along its speed line",
                 "unusable": "not computable"}
 
