@@ -17,7 +17,10 @@ from ..figures.pinned import add_pinned, load_curve_A, show_pinned
 from ..results import SessionResults
 from ..state import ExplorerState
 from ..export import load_csv, map_csv
+from ..plot_words import load_description, map_description
 from ..worker import LOAD_F_N, UNIFORM_TOL
+from .access import LiveDescription
+from .data_table import DataTable
 from .export import ResultDownload, svg_button
 from .layout import BUTTON_CSS, grid_css
 
@@ -56,7 +59,13 @@ class RegimeMapView(pn.viewable.Viewer):
                                   "map", results=self.results, name="regime_map",
                                   label="Map CSV")
         self.svg = svg_button(["regime_map"], css="map-svg")
+        # The map in words (with the current springs' cell) and in numbers.
+        self.description = LiveDescription(width=0, height=0, margin=0,
+                                           css_classes=["map-description"])
+        self.table = DataTable(lambda: map_csv(self.results.regime_map),
+                               "Uniform arrays over k_r and k_θ (Fig. 5)", "map-table")
         self._describe()
+        self._words()
 
     def _on_tap(self, event) -> None:
         if event.x is not None and event.y is not None and event.x > 0 and event.y > 0:
@@ -65,6 +74,14 @@ class RegimeMapView(pn.viewable.Viewer):
     @param.depends("state.k_r", "state.k_theta", watch=True)
     def _on_stiffness(self) -> None:
         F.update(self._sources, F.map_now(self.state.k_r, self.state.k_theta))
+
+    @param.depends("state.k_r", "state.k_theta", "state.map_quantity", "state.average",
+                   "results.regime_map", watch=True)
+    def _words(self) -> None:
+        s = self.state
+        self.description.text = map_description(self.results.regime_map, s.map_quantity,
+                                                s.average, s.k_r, s.k_theta)
+        self.table.refresh()
 
     @param.depends("results.regime_map", "results.busy", "results.errors", watch=True)
     def _describe(self) -> None:
@@ -113,7 +130,7 @@ class RegimeMapView(pn.viewable.Viewer):
                           css_classes=["figure", "figure-regime_map"]),
             pn.Column(self.toggle, self.info, pn.Row(self.csv, self.svg, margin=0,
                                                      sizing_mode="stretch_width"),
-                      css_classes=["side-column"], margin=0),
+                      self.table, self.description, css_classes=["side-column"], margin=0),
             css_classes=["map-view"], margin=0, sizing_mode="stretch_both",
             stylesheets=[FIGURE_AND_TEXT])
 
@@ -140,6 +157,10 @@ class LoadView(pn.viewable.Viewer):
                                   "load", results=self.results, name="load",
                                   label="Load curves CSV")
         self.svg = svg_button(["load"], css="load-svg")
+        self.description = LiveDescription(width=0, height=0, margin=0,
+                                           css_classes=["load-description"])
+        self.table = DataTable(lambda: load_csv(self.results.load),
+                               "Uniform arrays against the load (Fig. 6)", "load-table")
         self._redraw()
 
     @property
@@ -173,6 +194,9 @@ class LoadView(pn.viewable.Viewer):
         row = self.results.uniform
         col = AVERAGE_COLUMNS[self.state.average]
         F.update(self._sources, F.load_now(self.state.F_N, row[col] if row else None))
+        self.description.text = load_description(self.results.load, self.state.F_N,
+                                                 self.state.average, row)
+        self.table.refresh()
 
     @param.depends("results.busy", "results.errors", watch=True)
     def _on_busy(self) -> None:
@@ -202,6 +226,6 @@ class LoadView(pn.viewable.Viewer):
             "slab feels).",
             sizing_mode="stretch_width", styles={"font-size": "0.92em"}),
             pn.Row(self.csv, self.svg, margin=0, sizing_mode="stretch_width"),
-            css_classes=["side-column"], margin=0),
+            self.table, self.description, css_classes=["side-column"], margin=0),
             css_classes=["load-view"], margin=0, sizing_mode="stretch_both",
             stylesheets=[FIGURE_AND_TEXT])
