@@ -79,7 +79,8 @@ class ArrayView(pn.viewable.Viewer):
                               label="Figures (SVG)")
         # The plots in words and in numbers, once per result (never per frame).
         self.description = LiveDescription(text=array_description(None, "uniform"), width=0,
-                                           height=0, margin=0,
+                                           height=0, margin=0, describes=["array-view"],
+                                           label="The array under the slab, live",
                                            css_classes=["array-description"])
         self.table = DataTable(lambda: array_csv(self.results.array),
                                "The array's live curves, frame by frame", "array-table")

@@ -20,6 +20,7 @@ from ..export import load_csv, map_csv
 from ..plot_words import load_description, map_description
 from ..worker import LOAD_F_N, UNIFORM_TOL
 from .access import LiveDescription
+from .click_keys import map_cell, map_steps
 from .data_table import DataTable
 from .export import ResultDownload, svg_button
 from .layout import BUTTON_CSS, grid_css
@@ -61,9 +62,11 @@ class RegimeMapView(pn.viewable.Viewer):
         self.svg = svg_button(["regime_map"], css="map-svg")
         # The map in words (with the current springs' cell) and in numbers.
         self.description = LiveDescription(width=0, height=0, margin=0,
-                                           css_classes=["map-description"])
+                                           css_classes=["map-description"],
+                                           describes=["figure-regime_map"])
         self.table = DataTable(lambda: map_csv(self.results.regime_map),
                                "Uniform arrays over k_r and k_θ (Fig. 5)", "map-table")
+        self.keys = map_steps(state, lambda: map_cell(self.results.regime_map))
         self._describe()
         self._words()
 
@@ -106,7 +109,8 @@ class RegimeMapView(pn.viewable.Viewer):
         self.info.object = (
             f"{head} The map follows the F_N slider and the β option: loads "
             "0.1, 0.3, 1, 3 and 10 are shipped, others are computed here (a coarse map "
-            "first). **Click the map to choose k_r, k_θ.** Dashed lines: where the regime "
+            "first). **Click the map to choose k_r, k_θ** (or, from the keyboard, the "
+            "buttons below). Dashed lines: where the regime "
             "text switches; the four labelled points are the paper's regimes; the current "
             "springs are marked ⊕.")
 
@@ -128,7 +132,7 @@ class RegimeMapView(pn.viewable.Viewer):
         return pn.Column(
             pn.pane.Bokeh(self.figure, sizing_mode="stretch_both",
                           css_classes=["figure", "figure-regime_map"]),
-            pn.Column(self.toggle, self.info, pn.Row(self.csv, self.svg, margin=0,
+            pn.Column(self.toggle, self.info, self.keys, pn.Row(self.csv, self.svg, margin=0,
                                                      sizing_mode="stretch_width"),
                       self.table, self.description, css_classes=["side-column"], margin=0),
             css_classes=["map-view"], margin=0, sizing_mode="stretch_both",
@@ -158,7 +162,8 @@ class LoadView(pn.viewable.Viewer):
                                   label="Load curves CSV")
         self.svg = svg_button(["load"], css="load-svg")
         self.description = LiveDescription(width=0, height=0, margin=0,
-                                           css_classes=["load-description"])
+                                           css_classes=["load-description"],
+                                           describes=["figure-load"])
         self.table = DataTable(lambda: load_csv(self.results.load),
                                "Uniform arrays against the load (Fig. 6)", "load-table")
         self._redraw()

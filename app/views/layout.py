@@ -13,6 +13,7 @@ one column, one plot per row.
 """
 from __future__ import annotations
 
+from ..figures.player import PLAY_FILL
 from .browser import NARROW_PX
 
 PHONE = f"@media (max-width: {NARROW_PX}px)"
@@ -33,7 +34,7 @@ ROOT_PROJECTOR = {"--bokeh-font-size": "18px", "font-size": "18px", "color": "#0
 #: WCAG 2.1 AA contrast (4.5:1 for text; 3:1 for the focus ring against white): the
 #: keyboard focus ring, a warning outline's text (the Reset button), a filled green button
 #: (Play), an info notice's text and inline code.
-UI_COLOURS = {"focus": "#005FCC", "warning_text": "#8A5300", "ok_fill": "#2E7D32",
+UI_COLOURS = {"focus": "#005FCC", "warning_text": "#8A5300", "ok_fill": PLAY_FILL,
               "info_text": "#055160", "code_text": "#1F4E8C"}
 
 #: Given to every shadow root of the page (``app.views.access.PageAccess``): a visible

@@ -22,6 +22,7 @@ from ..results import SessionResults
 from ..state import ExplorerState
 from ..worker import POLAR_N
 from .access import LiveDescription
+from .click_keys import theta_steps
 from .data_table import DataTable
 from .layout import grid_css
 
@@ -58,7 +59,8 @@ class PolarView(pn.viewable.Viewer):
         self.caption = self._caption()
         # The diagrams in words and in numbers, once per result.
         self.description = LiveDescription(text=polar_description(None), width=0, height=0,
-                                           margin=0, css_classes=["polar-description"])
+                                           margin=0, css_classes=["polar-description"],
+                                           describes=[f"figure-polar_{k}" for k in KEYS])
         r = self.results
         self.table = DataTable(lambda: sweep_csv(r.polar, pinned=r.polar_A,
                                                  comparing=r.comparing),
@@ -97,7 +99,7 @@ class PolarView(pn.viewable.Viewer):
             f"F_N = {settings['F_N']:.3g}, β {settings['beta']}. "
             + (f"⚠ {bad} orientations did not succeed. " if bad else "")
             + (f"{pivot} driven into their pivot region. " if pivot else "")
-            + "Click a diagram to set θ₀ (or use the θ₀ slider).")
+            + "Click a diagram to set θ₀ (or, from the keyboard, the buttons below).")
         self.table.refresh()
 
     @param.depends("results.busy", "results.errors", watch=True)
@@ -142,7 +144,8 @@ class PolarView(pn.viewable.Viewer):
             F.style(fig, self.state.projector)
 
     def __panel__(self):
-        notes = pn.Column(self.status, self.caption, self.table, self.description,
+        notes = pn.Column(self.status, theta_steps(self.state), self.caption, self.table,
+                          self.description,
                           css_classes=["polar-notes"],
                           sizing_mode="stretch_width", margin=0)
         return pn.Column(

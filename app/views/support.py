@@ -100,8 +100,11 @@ class SupportView(pn.viewable.Viewer):
         self._player_pane = pn.pane.Bokeh(self.player.layout, margin=(0, 5),
                                           css_classes=["player"], sizing_mode="stretch_width")
         # The plots in words, for screen readers: written once per result, never per frame.
-        self.description = LiveDescription(text=plots_description(None), width=0, height=0,
-                                           margin=0, css_classes=["support-description"])
+        self.description = LiveDescription(
+            text=plots_description(None), width=0, height=0, margin=0,
+            css_classes=["support-description"], label="Energy split during the contact",
+            describes=[f"figure-{name}" for name in ("scene", "forces", "friction_law",
+                                                     "energy_live_layout")])
         self.export = AnimationExport(state=self.state, results=self.results, what="support")
         if self._doc is not None:
             # Keyboard shortcuts (and autoplay) start with a change the page sees: made

@@ -68,8 +68,10 @@ def test_every_tab_describes_its_plots_and_the_words_follow_the_state(page, page
                                  f"{_text(page, css)!r}")
         assert _text(page, css) != before
         page.get_by_role("button", name="Pendulum", exact=True).click()
-        pt.wait_for(page, lambda: _text(page, css) == before, timeout_s=180,
-                    what=f"the {title} tab's description to come back with the Pendulum preset")
+        pt.wait_for(page, lambda: "k_r = 3, k_θ = 0.01" in _text(page, css)
+                    and soft not in _text(page, css), timeout_s=180,
+                    what=lambda: f"the {title} tab's description to come back with the "
+                                 f"Pendulum preset: {_text(page, css)!r}")
     assert page_log.errors == [], page_log.errors
 
 
@@ -86,15 +88,15 @@ def _csv_rows(text: str) -> list[list[str]]:
 
 def _table(page, css: str) -> dict:
     return page.evaluate("""(css) => {
-      const host = document.querySelector("." + css) ;
-      const find = (root) => {
-        const t = root.querySelector("table");
+      const find = (root, selector) => {  // through shadow roots
+        const t = root.querySelector(selector);
         if (t) return t;
         for (const el of root.querySelectorAll("*"))
-          if (el.shadowRoot) { const f = find(el.shadowRoot); if (f) return f; }
+          if (el.shadowRoot) { const f = find(el.shadowRoot, selector); if (f) return f; }
         return null;
       };
-      const table = host && find(host.shadowRoot || host);
+      const host = find(document, "." + css);
+      const table = host && find(host.shadowRoot || host, "table");
       if (!table) return null;
       return {caption: table.caption ? table.caption.textContent : "",
               head: [...table.querySelectorAll("thead th")].map((th) => th.textContent),
