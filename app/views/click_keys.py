@@ -14,7 +14,7 @@ import panel as pn
 
 from ..state import ExplorerState
 from .layout import BUTTON_CSS
-from .widgets import look
+from .widgets import caption, look
 
 #: A map cell when no map is there yet: the shipped maps' 24 cells over [0.01, 3].
 DEFAULT_CELL = (3.0 / 0.01) ** (1 / 23)
@@ -31,7 +31,7 @@ def map_cell(regime_map) -> float:
 
 
 def _button(label: str, css: str, action, tip: str) -> pn.widgets.Button:
-    button = pn.widgets.Button(name=label, description=tip, **look("default", "outline"),
+    button = pn.widgets.Button(**caption(label), description=tip, **look("default", "outline"),
                                css_classes=["click-key", css], margin=(2, 3), width=64,
                                stylesheets=[BUTTON_CSS])
     button.on_click(lambda _: action())
