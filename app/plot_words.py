@@ -38,6 +38,11 @@ def _minus(text: str) -> str:
     return re.sub(r"-(?=[0-9.])", "−", text)
 
 
+def _small(x: float) -> str:
+    """A number as said aloud: 3 digits, "nearly 0" below 0.001 (never "2.69e−05")."""
+    return "nearly 0" if abs(x) < 1e-3 else f"{x:.3g}"
+
+
 def _deg(radians) -> float:
     return math.degrees(float(radians))
 
@@ -86,7 +91,7 @@ def polar_description(sweep, support=None) -> str:
         return "The polar diagrams have no finished orientation to show."
     low, at_low = _extreme(theta, ftx, np.argmin)
     high, at_high = _extreme(theta, ftx, np.argmax)
-    d_low, d_high = float(np.nanmin(dydx)), float(np.nanmax(dydx))
+    d_low, d_high = (_small(float(np.nanmin(dydx))), _small(float(np.nanmax(dydx))))
     side, at_side = _extreme(theta, np.abs(fty), np.argmax)
     side = float(fty[np.flatnonzero(theta == at_side)[0]])
     towards = "+y" if side > 0 else "−y"
@@ -94,7 +99,7 @@ def polar_description(sweep, support=None) -> str:
             f"θ₀, for k_r = {s['k_r']:.3g}, k_θ = {s['k_theta']:.3g}, F_N = {s['F_N']:.3g}; "
             f"θ₀ and −θ₀ give the same friction and D_y/D_x. Friction F_T,x/(μ₀F_N) is "
             f"lowest, {low:.3g}, at θ₀ = {at_low:.0f}° and highest, {high:.3g}, at "
-            f"θ₀ = {at_high:.0f}°. D_y/D_x goes from {d_low:.3g} to {d_high:.3g}. The "
+            f"θ₀ = {at_high:.0f}°. D_y/D_x goes from {d_low} to {d_high}. The "
             f"sideways force F_T,y/(μ₀F_N) is strongest at θ₀ = {at_side:.0f}°, "
             f"{side:.3g}, pushing the slab towards {towards} (the opposite at −θ₀).")
     fixed = getattr(support, "fixed", None)

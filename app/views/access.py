@@ -13,7 +13,8 @@ shadow roots (again whenever one of them changes, debounced) and:
   "to");
 * hides typeset equations' SVG from screen readers: each equation's text is written
   beside it (``EquationsView``), in a visually hidden paragraph;
-* lets the keyboard reach a region that scrolls sideways (a long equation on a phone).
+* lets the keyboard reach a region that scrolls sideways (a long equation on a phone);
+* names a card's fold button after its title ("Data as a table").
 
 ``LiveDescription`` is a polite live region (``role="status"``): a short description of
 what a view's plots show, written by the server from the computed result (never per
@@ -73,6 +74,12 @@ class PageAccess(JSComponent):
       if (root !== document && !root.adoptedStyleSheets.includes(sheet))
         root.adoptedStyleSheets = [...root.adoptedStyleSheets, sheet];
       nameHandles(root);
+      // A card's fold button is named by its title, also where the title is clipped.
+      for (const button of root.querySelectorAll("button.card-header")) {
+        const name = button.textContent.replace(/\s+/g, " ").trim();
+        if (name && button.getAttribute("aria-label") !== name)
+          button.setAttribute("aria-label", name);
+      }
       for (const svg of root.querySelectorAll("mjx-container svg")) {
         if (svg.getAttribute("aria-hidden") !== "true") svg.setAttribute("aria-hidden", "true");
       }
@@ -91,6 +98,18 @@ class PageAccess(JSComponent):
       model.on("remove", stop);
     }
     """
+
+
+def figure_classes(*figures) -> list[str]:
+    """Mark Bokeh ``figures`` (or layouts) with the class ``figure-<name>`` that a
+    ``LiveDescription``'s ``describes`` names; returns those classes."""
+    classes = []
+    for fig in figures:
+        cls = f"figure-{fig.name}"
+        if cls not in fig.css_classes:
+            fig.css_classes = [*fig.css_classes, cls]
+        classes.append(cls)
+    return classes
 
 
 class LiveDescription(JSComponent):

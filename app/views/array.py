@@ -23,7 +23,7 @@ from ..plot_words import array_description
 from ..results import SessionResults
 from ..state import ExplorerState
 from ..texts import FELT_WORDS
-from .access import LiveDescription
+from .access import LiveDescription, figure_classes
 from .data_table import DataTable
 from .export import AnimationExport, ResultDownload, svg_button
 from .layout import WIDE, mode_classes
@@ -79,7 +79,8 @@ class ArrayView(pn.viewable.Viewer):
                               label="Figures (SVG)")
         # The plots in words and in numbers, once per result (never per frame).
         self.description = LiveDescription(text=array_description(None, "uniform"), width=0,
-                                           height=0, margin=0, describes=["array-view"],
+                                           height=0, margin=0,
+                                           describes=["figure-array_page"],
                                            label="The array under the slab, live",
                                            css_classes=["array-description"])
         self.table = DataTable(lambda: array_csv(self.results.array),
@@ -95,8 +96,10 @@ class ArrayView(pn.viewable.Viewer):
         self.player = browser_player(motion.n_frames, times=motion.t, name="array_player",
                                      autoplay=self.state.play, responsive=True, width=900)
         scene = array_scene(motion, self.player, width=900, responsive=True)
-        self.pane.object = column(self.player.layout, scene, sizing_mode="stretch_width",
-                                  name="array_page")
+        page = column(self.player.layout, scene, sizing_mode="stretch_width",
+                      name="array_page")
+        figure_classes(page)  # named and described for screen readers
+        self.pane.object = page
         if self._doc is not None:
             # Keys and autoplay start with a change the page sees: once the page has loaded
             # (a result that came before), or once the new models are in a loaded page.

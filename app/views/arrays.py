@@ -19,7 +19,7 @@ from ..state import ExplorerState
 from ..export import load_csv, map_csv
 from ..plot_words import load_description, map_description
 from ..worker import LOAD_F_N, UNIFORM_TOL
-from .access import LiveDescription
+from .access import LiveDescription, figure_classes
 from .click_keys import map_cell, map_steps
 from .data_table import DataTable
 from .export import ResultDownload, svg_button
@@ -63,7 +63,7 @@ class RegimeMapView(pn.viewable.Viewer):
         # The map in words (with the current springs' cell) and in numbers.
         self.description = LiveDescription(width=0, height=0, margin=0,
                                            css_classes=["map-description"],
-                                           describes=["figure-regime_map"])
+                                           describes=figure_classes(self.figure))
         self.table = DataTable(lambda: map_csv(self.results.regime_map),
                                "Uniform arrays over k_r and k_θ (Fig. 5)", "map-table")
         self.keys = map_steps(state, lambda: map_cell(self.results.regime_map))
@@ -163,7 +163,7 @@ class LoadView(pn.viewable.Viewer):
         self.svg = svg_button(["load"], css="load-svg")
         self.description = LiveDescription(width=0, height=0, margin=0,
                                            css_classes=["load-description"],
-                                           describes=["figure-load"])
+                                           describes=figure_classes(self.figure))
         self.table = DataTable(lambda: load_csv(self.results.load),
                                "Uniform arrays against the load (Fig. 6)", "load-table")
         self._redraw()

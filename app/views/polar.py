@@ -21,7 +21,7 @@ from ..plot_words import polar_description
 from ..results import SessionResults
 from ..state import ExplorerState
 from ..worker import POLAR_N
-from .access import LiveDescription
+from .access import LiveDescription, figure_classes
 from .click_keys import theta_steps
 from .data_table import DataTable
 from .layout import grid_css
@@ -60,7 +60,7 @@ class PolarView(pn.viewable.Viewer):
         # The diagrams in words and in numbers, once per result.
         self.description = LiveDescription(text=polar_description(None), width=0, height=0,
                                            margin=0, css_classes=["polar-description"],
-                                           describes=[f"figure-polar_{k}" for k in KEYS])
+                                           describes=figure_classes(*self.figures.values()))
         r = self.results
         self.table = DataTable(lambda: sweep_csv(r.polar, pinned=r.polar_A,
                                                  comparing=r.comparing),
