@@ -76,7 +76,7 @@ class PageAccess(JSComponent):
       nameHandles(root);
       // A card's fold button is named by its title, also where the title is clipped.
       for (const button of root.querySelectorAll("button.card-header")) {
-        const name = button.textContent.replace(/\s+/g, " ").trim();
+        const name = button.textContent.replace(/\\s+/g, " ").trim();
         if (name && button.getAttribute("aria-label") !== name)
           button.setAttribute("aria-label", name);
       }
