@@ -1,11 +1,11 @@
 """The numbers behind a tab's plots as a table on the page ("Data as a table"), so nothing
 is only in a picture (WCAG 1.1.1).
 
-``DataTable`` is a collapsed card under a tab's figures; opened, it shows the rows of the
+``DataTable`` is a toggle button under a tab's figures; pressed, it shows the rows of the
 tab's CSV download (the same text, read back with ``model.csvfile.read_text``) as an HTML
 table with a caption and column headers that carry units (``column_header``: the
 registered quantities' labels and units, ``model.quantities``). The table is written only
-while the card is open, and again when the owner says the result changed (``refresh``).
+while it is shown, and again when the owner says the result changed (``refresh``).
 A long file (a trajectory, the array's frames) is shown every k-th row, first and last
 kept, and the caption says so: the download has every row.
 """
@@ -20,6 +20,9 @@ import panel as pn
 
 from model import csvfile
 from model.quantities import QUANTITIES, format_value, label
+
+from .layout import BUTTON_CSS
+from .widgets import caption, look
 
 #: Rows shown at most (a screen reader's table, not the whole file).
 MAX_ROWS = 120
@@ -88,22 +91,34 @@ def table_html(csv_text: str, what: str, limit: int = MAX_ROWS) -> str:
 
 
 class DataTable(pn.viewable.Viewer):
-    """A collapsed card "Data as a table" holding the CSV that ``csv_text()`` returns."""
+    """A toggle button "Data as a table" that shows the CSV ``csv_text()`` returns as a table
+    (a button, not a card: its name is its own text, there as soon as it is drawn)."""
 
     def __init__(self, csv_text: Callable[[], str], what: str, css: str, **params):
         super().__init__(**params)
         self._csv_text, self.what = csv_text, what
+        self.toggle = pn.widgets.Toggle(**caption("Data as a table"),
+                                        **look("default", "outline"),
+                                        margin=(4, 10), stylesheets=[BUTTON_CSS],
+                                        css_classes=["data-table-button"])
         self.pane = pn.pane.HTML("", stylesheets=[TABLE_CSS], sizing_mode="stretch_width",
-                                 margin=0)
-        self.card = pn.Card(self.pane, title="Data as a table", collapsed=True,
-                            sizing_mode="stretch_width", margin=(4, 10),
-                            css_classes=["data-table-card", css])
-        self.card.param.watch(lambda _: self.refresh(), "collapsed")
+                                 margin=(0, 10), visible=False)
+        self.toggle.param.watch(self._on_toggle, "value")
+        self._layout = pn.Column(self.toggle, self.pane, sizing_mode="stretch_width", margin=0,
+                                 css_classes=["data-table-card", css])
+
+    @property
+    def collapsed(self) -> bool:
+        return not self.toggle.value
+
+    def _on_toggle(self, _) -> None:
+        self.pane.visible = self.toggle.value
+        self.refresh()
 
     def refresh(self) -> None:
-        """Write the table again from the current result (only while the card is open)."""
-        if not self.card.collapsed:
+        """Write the table again from the current result (only while it is shown)."""
+        if self.toggle.value:
             self.pane.object = table_html(self._csv_text(), self.what)
 
     def __panel__(self):
-        return self.card
+        return self._layout
