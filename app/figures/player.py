@@ -259,8 +259,7 @@ def browser_player(n_frames: int, times=None, fps: float = 30.0, autoplay: bool 
                    styles={"font-size": "15px"}, stylesheets=[SELECT_CSS])
     loop_t = Toggle(label="⟳ Loop", active=loop, width=96, name=f"{name}_loop",
                     css_classes=[CONTROL_CLASS],
-                    html_attributes={"title": "Start again at the end (L on the player)"},
-                    **big)
+                    html_attributes={"title": "Start again at the end (L)"}, **big)
     # The frames' times live in a data source, so a new trajectory can relabel them.
     timeline = ColumnDataSource({"t": times}, name=f"{name}_times")
     readout = Div(text=_readout(0, n_frames, times[0], time_label), width=210,
