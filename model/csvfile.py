@@ -18,7 +18,7 @@ import numpy as np
 
 from .quantities import QUANTITIES, column_notes
 
-__all__ = ["write", "text", "read", "cell"]
+__all__ = ["write", "text", "read", "read_text", "cell"]
 
 _COLUMN = "column "
 
@@ -56,19 +56,30 @@ def text(columns: dict, header: dict) -> str:
 def read(path) -> tuple[dict, dict]:
     """(header, columns) of a file written by ``write``; columns are numpy arrays
     (bool, int, float or str, whichever reads every cell)."""
-    header, lines = {}, []
     with open(path, encoding="utf-8") as src:
-        for line in src:
-            if line.startswith("# "):
-                key, _, value = line[2:].rstrip("\n").partition(": ")
-                if key.startswith(_COLUMN):
-                    continue  # described by the registry, not a setting
-                try:
-                    header[key] = json.loads(value)
-                except ValueError:
-                    header[key] = value
-            else:
-                lines.append(line)
+        return _read_lines(src)
+
+
+def read_text(text: str) -> tuple[dict, dict]:
+    """``read`` of the text ``write`` wrote (``text``'s result)."""
+    return _read_lines(io.StringIO(text))
+
+
+def _read_lines(src) -> tuple[dict, dict]:
+    header, lines = {}, []
+    for line in src:
+        if line.startswith("# "):
+            key, _, value = line[2:].rstrip("\n").partition(": ")
+            if key.startswith(_COLUMN):
+                continue  # described by the registry, not a setting
+            try:
+                header[key] = json.loads(value)
+            except ValueError:
+                header[key] = value
+        else:
+            lines.append(line)
+    if not lines:
+        return header, {}
     names, *rows = list(csv.reader(lines))
     return header, {name: _parse([r[j] for r in rows]) for j, name in enumerate(names)}
 

@@ -20,7 +20,9 @@ they follow at most every ``UI_MS`` ms, the figures every frame.
 Keyboard: Space play/pause, <- -> one frame, Up/Down faster/slower, Home first frame,
 L loop. The keys go to the player last used (or last made ready) and are ignored while an
 input, select or text area has the focus; Space and Enter on a focused button press that
-button. Autoplay is skipped when the reader asked for less motion
+button. L, a letter, acts only while one of the player's own controls has the focus
+(``CONTROL_CLASS``): typed elsewhere (speech input, a screen reader's keys) it does
+nothing (WCAG 2.1.4). Autoplay is skipped when the reader asked for less motion
 (``prefers-reduced-motion: reduce``); Play still starts the player.
 """
 from __future__ import annotations
@@ -39,14 +41,23 @@ __all__ = ["BrowserPlayer", "PlayerFrame", "browser_player", "SPEEDS", "SHORTCUT
 #: Playback speeds (multiples of ``fps`` frames per second).
 SPEEDS = (0.1, 0.25, 0.5, 1.0, 2.0, 4.0)
 SHORTCUTS = (("Space", "play / pause"), ("← →", "one frame back / forward"),
-             ("↑ ↓", "faster / slower"), ("Home", "first frame"), ("L", "loop on / off"))
+             ("↑ ↓", "faster / slower"), ("Home", "first frame"),
+             ("L", "loop on / off (on the player's buttons)"))
+#: CSS class of the player's controls: the letter key L acts only while one has the focus.
+CONTROL_CLASS = "mp-player-control"
 PLAY, PAUSE = "▶ Play", "‖ Pause"
+#: Play's green, dark enough for its white label (5.1:1, WCAG 1.4.3; Bokeh's is 2.5:1).
+PLAY_FILL = "#2E7D32"
+PLAY_CSS = (f".bk-btn-success {{ background-color: {PLAY_FILL}; border-color: {PLAY_FILL}; "
+            "color: #FFFFFF; }")
 
 # The player's state lives in the page (window.__mpf_players, keyed by the frame model's
 # id); every callback first makes sure it exists, so whichever runs first sets it up.
 # The frame model has no view: changing it costs only the figures that follow it. The
 # slider and the readout (DOM, with layout work) follow at most every UI_MS while playing.
-_PRELUDE = """
+_PRELUDE = f"""
+const CONTROL = {CONTROL_CLASS!r};
+""" + """
 const reg = (window.__mpf_players = window.__mpf_players || {});
 let st = reg[frame.id];
 if (st === undefined) {
@@ -112,7 +123,8 @@ if (st === undefined) {
     else if (k === "ArrowUp") st.faster(1);
     else if (k === "ArrowDown") st.faster(-1);
     else if (k === "Home") st.step(-n);
-    else if (k === "l" || k === "L") loop.active = !loop.active;
+    else if ((k === "l" || k === "L") && path.some((el) => el && el.classList &&
+             el.classList.contains(CONTROL))) loop.active = !loop.active;
     else return;
     e.preventDefault();
   };
@@ -227,22 +239,26 @@ def browser_player(n_frames: int, times=None, fps: float = 30.0, autoplay: bool 
     frame = PlayerFrame(value=0, name=f"{name}_frame")
     slider = Slider(start=0, end=n_frames - 1, value=0, step=1, title="frame",
                    show_value=False, width=max(200, width - 260), name=f"{name}_slider",
-                   height=44, margin=(4, 10, 4, 10))
+                   css_classes=[CONTROL_CLASS], height=44, margin=(4, 10, 4, 10))
     play = Toggle(label=PLAY, active=False, button_type="success", width=120, name=f"{name}_play",
-                  html_attributes={"title": "Play or pause (Space)"},
+                  css_classes=[CONTROL_CLASS],
+                  html_attributes={"title": "Play or pause (Space)"}, stylesheets=[PLAY_CSS],
                   **big)
-    back = Button(label="◀ Step", width=96, name=f"{name}_back",
+    back = Button(label="◀ Step", width=96, name=f"{name}_back", css_classes=[CONTROL_CLASS],
                   html_attributes={"title": "One frame back (←)"},
                   **big)
     forward = Button(label="Step ▶", width=96, name=f"{name}_forward",
+                     css_classes=[CONTROL_CLASS],
                      html_attributes={"title": "One frame forward (→)"}, **big)
-    first = Button(label="|◀ Start", width=96, name=f"{name}_first",
+    first = Button(label="|◀ Start", width=96, name=f"{name}_first", css_classes=[CONTROL_CLASS],
                    html_attributes={"title": "Back to the first frame (Home)"}, **big)
     speed = Select(title="speed", value="1", width=90, name=f"{name}_speed",
+                   css_classes=[CONTROL_CLASS],
                    options=[(f"{s:g}", f"{s:g}×") for s in SPEEDS],
                    html_attributes={"title": "Playback speed (↑ faster, ↓ slower)"},
                    styles={"font-size": "15px"}, stylesheets=[SELECT_CSS])
     loop_t = Toggle(label="⟳ Loop", active=loop, width=96, name=f"{name}_loop",
+                    css_classes=[CONTROL_CLASS],
                     html_attributes={"title": "Start again at the end (L)"}, **big)
     # The frames' times live in a data source, so a new trajectory can relabel them.
     timeline = ColumnDataSource({"t": times}, name=f"{name}_times")

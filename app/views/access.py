@@ -13,18 +13,22 @@ shadow roots (again whenever one of them changes, debounced) and:
   "to");
 * hides typeset equations' SVG from screen readers: each equation's text is written
   beside it (``EquationsView``), in a visually hidden paragraph;
-* lets the keyboard reach a region that scrolls sideways (a long equation on a phone).
+* lets the keyboard reach a region that scrolls sideways (a long equation on a phone);
+* names a card's fold button after its title ("Data as a table").
 
 ``LiveDescription`` is a polite live region (``role="status"``): a short description of
 what a view's plots show, written by the server from the computed result (never per
 animation frame); a screen reader announces it once a change has settled. It is visually
-hidden (``SR_ONLY_CSS``).
+hidden (``SR_ONLY_CSS``). ``PageAccess`` also gives the figures it ``describes`` (their
+holders' CSS classes) ``role="figure"``, the figure's title as their name and the
+region's text as their description, so a reader who moves onto a plot hears what it shows.
 """
 from __future__ import annotations
 
 import param
 from panel.custom import JSComponent
 
+from ..figures.access_js import HANDLE_NAMES_JS, WATCH_ROOTS_JS
 from .layout import ACCESS_CSS, SR_ONLY_CSS
 
 
@@ -33,26 +37,48 @@ class PageAccess(JSComponent):
 
     css = param.String(default=ACCESS_CSS, doc="stylesheet given to every shadow root")
 
-    _esm = """
-    function handleName(root, handle) {
-      const title = root.querySelector(".bk-slider-title");
-      if (!title) return null;
-      const words = [...title.childNodes]
-        .filter((n) => !(n.classList && n.classList.contains("bk-slider-value")))
-        .map((n) => n.textContent).join("").replace(/:\\s*$/, "").replace(/\\s+/g, " ").trim();
-      if (!words) return null;
-      const handles = root.querySelectorAll(".noUi-handle");
-      if (handles.length < 2) return words;
-      return words + (handle.getAttribute("data-handle") === "0" ? ", from" : ", to");
+    _esm = WATCH_ROOTS_JS + HANDLE_NAMES_JS + """
+    // Bokeh figures' titles by name (a figure's holder has the class "figure-<name>").
+    function titles() {
+      const out = {};
+      for (const doc of (window.Bokeh ? Bokeh.documents : []))
+        for (const m of doc.all_models)
+          if (m.name && m.title && typeof m.title.text === "string") out[m.name] = m.title.text;
+      return out;
+    }
+
+    // The figures a live description describes: named by their title, described by it.
+    function describe(roots) {
+      const regions = [], hosts = [];
+      for (const root of roots) {
+        regions.push(...root.querySelectorAll(".live-description[data-describes]"));
+        for (const el of root.querySelectorAll("*")) if (el.classList.length) hosts.push(el);
+      }
+      if (!regions.length) return;
+      const named = titles();
+      for (const region of regions) {
+        const words = region.textContent;
+        for (const cls of region.dataset.describes.split(" ")) {
+          for (const host of hosts.filter((h) => h.classList.contains(cls))) {
+            const name = named[cls.replace(/^figure-/, "")] || region.dataset.label;
+            if (host.getAttribute("role") !== "figure") host.setAttribute("role", "figure");
+            if (host.getAttribute("aria-label") !== name) host.setAttribute("aria-label", name);
+            if (host.getAttribute("aria-description") !== words)
+              host.setAttribute("aria-description", words);
+          }
+        }
+      }
     }
 
     function tend(root, sheet) {
       if (root !== document && !root.adoptedStyleSheets.includes(sheet))
         root.adoptedStyleSheets = [...root.adoptedStyleSheets, sheet];
-      for (const handle of root.querySelectorAll(".noUi-handle")) {
-        const name = handleName(root, handle);
-        if (name && handle.getAttribute("aria-label") !== name)
-          handle.setAttribute("aria-label", name);
+      nameHandles(root);
+      // A card's fold button is named by its title, also where the title is clipped.
+      for (const button of root.querySelectorAll("button.card-header")) {
+        const name = button.textContent.replace(/\\s+/g, " ").trim();
+        if (name && button.getAttribute("aria-label") !== name)
+          button.setAttribute("aria-label", name);
       }
       for (const svg of root.querySelectorAll("mjx-container svg")) {
         if (svg.getAttribute("aria-hidden") !== "true") svg.setAttribute("aria-hidden", "true");
@@ -68,38 +94,31 @@ class PageAccess(JSComponent):
       const sheet = new CSSStyleSheet();
       sheet.replaceSync(model.css);
       document.adoptedStyleSheets = [...document.adoptedStyleSheets, sheet];
-      const watched = new WeakSet();
-      let pending = null;
-      const observer = new MutationObserver(() => {
-        if (pending === null) pending = setTimeout(scan, 100);
-      });
-      const scan = () => {
-        pending = null;
-        const visit = (root) => {
-          if (!watched.has(root)) {
-            watched.add(root);
-            observer.observe(root, {childList: true, subtree: true});
-          }
-          tend(root, sheet);
-          for (const host of root.querySelectorAll("*")) {
-            if (host.shadowRoot) visit(host.shadowRoot);
-          }
-        };
-        visit(document);
-      };
-      scan();
-      model.on("remove", () => {
-        observer.disconnect();
-        if (pending !== null) clearTimeout(pending);
-      });
+      const stop = watchRoots((root) => tend(root, sheet), describe);
+      model.on("remove", stop);
     }
     """
+
+
+def figure_classes(*figures) -> list[str]:
+    """Mark Bokeh ``figures`` (or layouts) with the class ``figure-<name>`` that a
+    ``LiveDescription``'s ``describes`` names; returns those classes."""
+    classes = []
+    for fig in figures:
+        cls = f"figure-{fig.name}"
+        if cls not in fig.css_classes:
+            fig.css_classes = [*fig.css_classes, cls]
+        classes.append(cls)
+    return classes
 
 
 class LiveDescription(JSComponent):
     """A visually hidden, polite live region whose text is ``text`` (set by the server)."""
 
     text = param.String(default="", doc="what the view's plots show now, in words")
+    describes = param.List(default=[], item_type=str,
+                           doc="CSS classes of the holders of the figures it describes")
+    label = param.String(default="plot", doc="their name where a figure has no title")
 
     _esm = """
     export function render({ model, el }) {
@@ -108,6 +127,10 @@ class LiveDescription(JSComponent):
       region.setAttribute("role", "status");
       region.setAttribute("aria-live", "polite");
       region.textContent = model.text;
+      if (model.describes.length) {
+        region.dataset.describes = model.describes.join(" ");
+        region.dataset.label = model.label;
+      }
       model.on("text", () => { region.textContent = model.text; });
       el.appendChild(region);
     }

@@ -19,9 +19,12 @@ from .. import figures as F
 from ..figures.array_scene import array_scene
 from ..figures.player import READY_DELAY_MS, browser_player
 from ..export import array_csv
+from ..plot_words import array_description
 from ..results import SessionResults
 from ..state import ExplorerState
 from ..texts import FELT_WORDS
+from .access import LiveDescription, figure_classes
+from .data_table import DataTable
 from .export import AnimationExport, ResultDownload, svg_button
 from .layout import WIDE, mode_classes
 
@@ -74,6 +77,14 @@ class ArrayView(pn.viewable.Viewer):
                                   results=self.results, name="array", label="Array CSV")
         self.svg = svg_button(["array_top", "array_live_panel"], css="array-svg",
                               label="Figures (SVG)")
+        # The plots in words and in numbers, once per result (never per frame).
+        self.description = LiveDescription(text=array_description(None, "uniform"), width=0,
+                                           height=0, margin=0,
+                                           describes=["figure-array_page"],
+                                           label="The array under the slab, live",
+                                           css_classes=["array-description"])
+        self.table = DataTable(lambda: array_csv(self.results.array),
+                               "The array's live curves, frame by frame", "array-table")
         self._draw()
         self._on_busy()
 
@@ -85,8 +96,10 @@ class ArrayView(pn.viewable.Viewer):
         self.player = browser_player(motion.n_frames, times=motion.t, name="array_player",
                                      autoplay=self.state.play, responsive=True, width=900)
         scene = array_scene(motion, self.player, width=900, responsive=True)
-        self.pane.object = column(self.player.layout, scene, sizing_mode="stretch_width",
-                                  name="array_page")
+        page = column(self.player.layout, scene, sizing_mode="stretch_width",
+                      name="array_page")
+        figure_classes(page)  # named and described for screen readers
+        self.pane.object = page
         if self._doc is not None:
             # Keys and autoplay start with a change the page sees: once the page has loaded
             # (a result that came before), or once the new models are in a loaded page.
@@ -95,6 +108,8 @@ class ArrayView(pn.viewable.Viewer):
                 player.ready, period=READY_DELAY_MS, count=1))
         self._restyle()
         self.status.object = result_text(motion, self.state.orientation)
+        self.description.text = array_description(motion, motion.orientation)
+        self.table.refresh()
 
     @param.depends("state.projector", watch=True)
     def _restyle(self) -> None:
@@ -130,6 +145,7 @@ class ArrayView(pn.viewable.Viewer):
         self._layout = pn.Column(
             self.toggle, self.status, self.pane, self.export,
             pn.Row(self.csv, self.svg, margin=0, sizing_mode="stretch_width"),
+            self.table, self.description,
             sizing_mode="stretch_width", stylesheets=[PROJECTOR_CSS],
             css_classes=mode_classes(["array-tab"], self.state.projector))
         return self._layout

@@ -17,7 +17,11 @@ from ..figures.pinned import add_pinned, load_curve_A, show_pinned
 from ..results import SessionResults
 from ..state import ExplorerState
 from ..export import load_csv, map_csv
+from ..plot_words import load_description, map_description
 from ..worker import LOAD_F_N, UNIFORM_TOL
+from .access import LiveDescription, figure_classes
+from .click_keys import map_cell, map_steps
+from .data_table import DataTable
 from .export import ResultDownload, svg_button
 from .layout import BUTTON_CSS, grid_css
 
@@ -56,7 +60,15 @@ class RegimeMapView(pn.viewable.Viewer):
                                   "map", results=self.results, name="regime_map",
                                   label="Map CSV")
         self.svg = svg_button(["regime_map"], css="map-svg")
+        # The map in words (with the current springs' cell) and in numbers.
+        self.description = LiveDescription(width=0, height=0, margin=0,
+                                           css_classes=["map-description"],
+                                           describes=figure_classes(self.figure))
+        self.table = DataTable(lambda: map_csv(self.results.regime_map),
+                               "Uniform arrays over k_r and k_θ (Fig. 5)", "map-table")
+        self.keys = map_steps(state, lambda: map_cell(self.results.regime_map))
         self._describe()
+        self._words()
 
     def _on_tap(self, event) -> None:
         if event.x is not None and event.y is not None and event.x > 0 and event.y > 0:
@@ -65,6 +77,14 @@ class RegimeMapView(pn.viewable.Viewer):
     @param.depends("state.k_r", "state.k_theta", watch=True)
     def _on_stiffness(self) -> None:
         F.update(self._sources, F.map_now(self.state.k_r, self.state.k_theta))
+
+    @param.depends("state.k_r", "state.k_theta", "state.map_quantity", "state.average",
+                   "results.regime_map", watch=True)
+    def _words(self) -> None:
+        s = self.state
+        self.description.text = map_description(self.results.regime_map, s.map_quantity,
+                                                s.average, s.k_r, s.k_theta)
+        self.table.refresh()
 
     @param.depends("results.regime_map", "results.busy", "results.errors", watch=True)
     def _describe(self) -> None:
@@ -89,7 +109,8 @@ class RegimeMapView(pn.viewable.Viewer):
         self.info.object = (
             f"{head} The map follows the F_N slider and the β option: loads "
             "0.1, 0.3, 1, 3 and 10 are shipped, others are computed here (a coarse map "
-            "first). **Click the map to choose k_r, k_θ.** Dashed lines: where the regime "
+            "first). **Click the map to choose k_r, k_θ** (or, from the keyboard, the "
+            "buttons below). Dashed lines: where the regime "
             "text switches; the four labelled points are the paper's regimes; the current "
             "springs are marked ⊕.")
 
@@ -111,9 +132,9 @@ class RegimeMapView(pn.viewable.Viewer):
         return pn.Column(
             pn.pane.Bokeh(self.figure, sizing_mode="stretch_both",
                           css_classes=["figure", "figure-regime_map"]),
-            pn.Column(self.toggle, self.info, pn.Row(self.csv, self.svg, margin=0,
+            pn.Column(self.toggle, self.info, self.keys, pn.Row(self.csv, self.svg, margin=0,
                                                      sizing_mode="stretch_width"),
-                      css_classes=["side-column"], margin=0),
+                      self.table, self.description, css_classes=["side-column"], margin=0),
             css_classes=["map-view"], margin=0, sizing_mode="stretch_both",
             stylesheets=[FIGURE_AND_TEXT])
 
@@ -140,6 +161,11 @@ class LoadView(pn.viewable.Viewer):
                                   "load", results=self.results, name="load",
                                   label="Load curves CSV")
         self.svg = svg_button(["load"], css="load-svg")
+        self.description = LiveDescription(width=0, height=0, margin=0,
+                                           css_classes=["load-description"],
+                                           describes=figure_classes(self.figure))
+        self.table = DataTable(lambda: load_csv(self.results.load),
+                               "Uniform arrays against the load (Fig. 6)", "load-table")
         self._redraw()
 
     @property
@@ -173,6 +199,9 @@ class LoadView(pn.viewable.Viewer):
         row = self.results.uniform
         col = AVERAGE_COLUMNS[self.state.average]
         F.update(self._sources, F.load_now(self.state.F_N, row[col] if row else None))
+        self.description.text = load_description(self.results.load, self.state.F_N,
+                                                 self.state.average, row)
+        self.table.refresh()
 
     @param.depends("results.busy", "results.errors", watch=True)
     def _on_busy(self) -> None:
@@ -202,6 +231,6 @@ class LoadView(pn.viewable.Viewer):
             "slab feels).",
             sizing_mode="stretch_width", styles={"font-size": "0.92em"}),
             pn.Row(self.csv, self.svg, margin=0, sizing_mode="stretch_width"),
-            css_classes=["side-column"], margin=0),
+            self.table, self.description, css_classes=["side-column"], margin=0),
             css_classes=["load-view"], margin=0, sizing_mode="stretch_both",
             stylesheets=[FIGURE_AND_TEXT])

@@ -13,6 +13,7 @@ one column, one plot per row.
 """
 from __future__ import annotations
 
+from ..figures.player import PLAY_FILL
 from .browser import NARROW_PX
 
 PHONE = f"@media (max-width: {NARROW_PX}px)"
@@ -20,7 +21,7 @@ WIDE = f"@media (min-width: {NARROW_PX + 1}px)"
 
 #: The root's variables on a screen and in projector mode (``styles`` of the root).
 ROOT_SCREEN = {"--bokeh-font-size": "13px", "font-size": "13px", "color": "#18191D",
-               "--mp-top": "90px", "--mp-handle": "20px", "--mp-track": "8px",
+               "--mp-top": "90px", "--mp-handle": "24px", "--mp-track": "8px",
                "--mp-button": "31px"}
 ROOT_PROJECTOR = {"--bokeh-font-size": "18px", "font-size": "18px", "color": "#000000",
                   "--mp-top": "98px", "--mp-handle": "30px", "--mp-track": "12px",
@@ -33,7 +34,7 @@ ROOT_PROJECTOR = {"--bokeh-font-size": "18px", "font-size": "18px", "color": "#0
 #: WCAG 2.1 AA contrast (4.5:1 for text; 3:1 for the focus ring against white): the
 #: keyboard focus ring, a warning outline's text (the Reset button), a filled green button
 #: (Play), an info notice's text and inline code.
-UI_COLOURS = {"focus": "#005FCC", "warning_text": "#8A5300", "ok_fill": "#2E7D32",
+UI_COLOURS = {"focus": "#005FCC", "warning_text": "#8A5300", "ok_fill": PLAY_FILL,
               "info_text": "#055160", "code_text": "#1F4E8C"}
 
 #: Given to every shadow root of the page (``app.views.access.PageAccess``): a visible
@@ -106,18 +107,19 @@ SIDEBAR_CSS = f"""
 .card-header {{ min-height: var(--mp-button); font-size: 1.1em; }}
 """
 
-#: Slider handles and tracks sized by the root's variables (touch-size on phones).
+#: Slider handles and tracks sized by the root's variables: at least 24 px (WCAG 2.5.8),
+#: touch-size on phones.
 SLIDER_CSS = """
 .noUi-horizontal { height: var(--mp-track, 8px); }
 .noUi-horizontal .noUi-handle {
-  width: var(--mp-handle, 20px); height: var(--mp-handle, 20px);
-  top: calc((var(--mp-track, 8px) - var(--mp-handle, 20px)) / 2 - 1px);
-  right: calc(var(--mp-handle, 20px) / -2); border-radius: 50%;
+  width: var(--mp-handle, 24px); height: var(--mp-handle, 24px);
+  top: calc((var(--mp-track, 8px) - var(--mp-handle, 24px)) / 2 - 1px);
+  right: calc(var(--mp-handle, 24px) / -2); border-radius: 50%;
 }
 .noUi-handle::before, .noUi-handle::after { display: none; }
 .noUi-target {
-  width: calc(100% - var(--mp-handle, 20px)) !important;
-  margin-left: calc(var(--mp-handle, 20px) / 2) !important;
+  width: calc(100% - var(--mp-handle, 24px)) !important;
+  margin-left: calc(var(--mp-handle, 24px) / 2) !important;
 }
 .bk-slider-title { font-size: var(--bokeh-font-size); }
 """

@@ -15,10 +15,15 @@ import param
 from bokeh.events import Tap
 
 from .. import figures as F
+from ..export import sweep_csv
 from ..figures.pinned import add_pinned, polar_A, show_pinned
+from ..plot_words import polar_description
 from ..results import SessionResults
 from ..state import ExplorerState
 from ..worker import POLAR_N
+from .access import LiveDescription, figure_classes
+from .click_keys import theta_steps
+from .data_table import DataTable
 from .layout import grid_css
 
 KEYS = ("FTx", "DyDx", "FTy")
@@ -52,6 +57,14 @@ class PolarView(pn.viewable.Viewer):
         self.status = pn.pane.Markdown("", css_classes=["polar-status"],
                                        styles={"font-size": "0.92em"}, margin=(0, 10))
         self.caption = self._caption()
+        # The diagrams in words and in numbers, once per result.
+        self.description = LiveDescription(text=polar_description(None), width=0, height=0,
+                                           margin=0, css_classes=["polar-description"],
+                                           describes=figure_classes(*self.figures.values()))
+        r = self.results
+        self.table = DataTable(lambda: sweep_csv(r.polar, pinned=r.polar_A,
+                                                 comparing=r.comparing),
+                               "Fixed arrays against θ₀ (Fig. 11)", "polar-table")
         self.panes = [pn.pane.Bokeh(f, margin=(0, 4), sizing_mode="stretch_both",
                                     css_classes=["figure", f"figure-{f.name}"])
                       for f in self.figures.values()]
@@ -86,7 +99,8 @@ class PolarView(pn.viewable.Viewer):
             f"F_N = {settings['F_N']:.3g}, β {settings['beta']}. "
             + (f"⚠ {bad} orientations did not succeed. " if bad else "")
             + (f"{pivot} driven into their pivot region. " if pivot else "")
-            + "Click a diagram to set θ₀.")
+            + "Click a diagram to set θ₀ (or, from the keyboard, the buttons below).")
+        self.table.refresh()
 
     @param.depends("results.busy", "results.errors", watch=True)
     def _on_busy(self) -> None:
@@ -115,6 +129,7 @@ class PolarView(pn.viewable.Viewer):
             values = {"FTx": f.FTx_over_mu0FN, "DyDx": f.Dy_over_Dx, "FTy": f.FTy_over_mu0FN}
         for key in KEYS:
             F.update(self._sources, F.polar_now(key, theta0, values[key], self._axes[key]))
+        self.description.text = polar_description(self.results.polar, data)
 
     def _on_tap(self, event) -> None:
         if event.x is None or event.y is None or (event.x == 0 and event.y == 0):
@@ -129,7 +144,9 @@ class PolarView(pn.viewable.Viewer):
             F.style(fig, self.state.projector)
 
     def __panel__(self):
-        notes = pn.Column(self.status, self.caption, css_classes=["polar-notes"],
+        notes = pn.Column(self.status, theta_steps(self.state), self.caption, self.table,
+                          self.description,
+                          css_classes=["polar-notes"],
                           sizing_mode="stretch_width", margin=0)
         return pn.Column(
             *self.panes, notes, css_classes=["polar-view"], margin=0,

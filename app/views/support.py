@@ -34,7 +34,7 @@ from ..figures.scene import view_box
 from ..motion_words import plots_description
 from ..results import SessionResults
 from ..state import ExplorerState
-from .access import LiveDescription
+from .access import LiveDescription, figure_classes
 from .export import AnimationExport
 from .layout import grid_css, mode_classes, projector_grid
 
@@ -100,8 +100,11 @@ class SupportView(pn.viewable.Viewer):
         self._player_pane = pn.pane.Bokeh(self.player.layout, margin=(0, 5),
                                           css_classes=["player"], sizing_mode="stretch_width")
         # The plots in words, for screen readers: written once per result, never per frame.
-        self.description = LiveDescription(text=plots_description(None), width=0, height=0,
-                                           margin=0, css_classes=["support-description"])
+        self.description = LiveDescription(
+            text=plots_description(None), width=0, height=0, margin=0,
+            css_classes=["support-description"], label="Energy split during the contact",
+            describes=figure_classes(self.scene, self.forces, self.friction,
+                                     self.energy_layout))
         self.export = AnimationExport(state=self.state, results=self.results, what="support")
         if self._doc is not None:
             # Keyboard shortcuts (and autoplay) start with a change the page sees: made

@@ -94,7 +94,8 @@ figure{display:inline-block;margin:1em;vertical-align:top}img{max-width:640px;bo
 
 def index_html(rep) -> str:
     """The report as one HTML page linking (and showing) every figure."""
-    parts = [f"<!doctype html><meta charset='utf-8'><title>Reproduction report</title>"
+    parts = ["<!doctype html><html lang='en'><meta charset='utf-8'>"
+             "<title>Reproduction report</title>"
              f"<style>{STYLE}</style><h1>Reproduction of Sci. Rep. 11, 8093 (2021)</h1>",
              f"<p>{rep.resolution.name} resolution, version {rep.version}, {rep.seconds:.0f} s. "
              f"<b>{sum(c.agrees for c in rep.checks)} of {len(rep.checks)} checks agree; "

@@ -126,8 +126,13 @@ def test_keyboard_shortcuts(pages, open_page):
     page.keyboard.press("ArrowDown")
     assert _state(page, "array_player")["speed"] == "0.5"
     loop = _state(page, "array_player")["loop"]
-    page.keyboard.press("l")
+    page.keyboard.press("l")  # a letter typed away from the player does nothing (WCAG 2.1.4)
+    assert _state(page, "array_player")["loop"] is loop
+    page.get_by_role("button", name="Step ▶").focus()
+    page.keyboard.press("l")  # on the player's buttons it toggles the loop
     assert _state(page, "array_player")["loop"] is (not loop)
+    page.locator("body").focus()
+    page.evaluate("() => document.activeElement.blur()")
     page.keyboard.press("Space")
     page.wait_for_timeout(600)
     s = _state(page, "array_player")
