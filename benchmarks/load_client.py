@@ -152,7 +152,9 @@ class Session:
         self.sliders = {name: self._find(f"ctl-{name}") for name in
                         ("theta0", "k_r", "k_theta", "F_N")}
         self.orbit = next(m for m in self.doc.models if getattr(m, "name", None) == "orbit")
-        self.readout = self._find("readout-fixed")
+        # The headline above the plots names the support's theta0 ("every support at
+        # theta0 = 90°"): what every visitor sees (the folded tables are written when opened).
+        self.readout = self._find("headline")
         self.open_s = time.perf_counter() - start
         self._reader = asyncio.create_task(self._read_loop())
 

@@ -127,6 +127,7 @@ def speeds_figure(width: int = 310, height: int = 300):
         ("quadrature error", "@quad{0.0e}"),
         ("integration error (energy)", "@energy{0.0e}"), ("status", "@status")]))
     legend_below(fig)
+    fig.legend[0].ncols = 2  # two rows: a projected one-row legend is wider than the plot
     _speed_axis(fig)
     return fig
 

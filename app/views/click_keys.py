@@ -38,6 +38,11 @@ def _button(label: str, css: str, action, tip: str) -> pn.widgets.Button:
     return button
 
 
+def _wrapping(buttons) -> pn.FlexBox:
+    """The buttons in a row that wraps where the column is narrow (projected text is larger)."""
+    return pn.FlexBox(*buttons, flex_wrap="wrap", margin=(0, 7), sizing_mode="stretch_width")
+
+
 def map_steps(state: ExplorerState, cell) -> pn.Column:
     """Buttons that move the springs one map cell (``cell()``: its ratio, read when
     pressed), as a click on the map would set them."""
@@ -52,7 +57,7 @@ def map_steps(state: ExplorerState, cell) -> pn.Column:
                    ("k_θ +", "kt-up", (0, 1), "larger k_θ: the ⊕ one cell up"))]
     return pn.Column(pn.pane.Markdown("Move ⊕ one cell (as a click on the map):",
                                       margin=(0, 10), styles={"font-size": "0.92em"}),
-                     pn.Row(*buttons, margin=(0, 7)), margin=0, css_classes=["map-keys"])
+                     _wrapping(buttons), margin=0, css_classes=["map-keys"])
 
 
 def theta_steps(state: ExplorerState) -> pn.Column:
@@ -63,4 +68,4 @@ def theta_steps(state: ExplorerState) -> pn.Column:
                for d in THETA_STEPS]
     return pn.Column(pn.pane.Markdown("Turn θ₀ (as a click on a diagram):", margin=(0, 10),
                                       styles={"font-size": "0.92em"}),
-                     pn.Row(*buttons, margin=(0, 7)), margin=0, css_classes=["theta-keys"])
+                     _wrapping(buttons), margin=0, css_classes=["theta-keys"])
