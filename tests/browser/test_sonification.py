@@ -62,7 +62,9 @@ def test_sound_is_off_until_asked_then_follows_the_frames_and_stops(page, page_l
     box = toggle.bounding_box()
     assert box["height"] >= 24 and box["width"] >= 24, box
     page.wait_for_timeout(500)
-    assert _contexts(page) == [] and _sound(page) is None, "audio before the reader asked"
+    before = _sound(page)
+    assert _contexts(page) == [] and (before is None or before["context"] == "none"), \
+        f"audio before the reader asked: {before}"
 
     toggle.click()  # a real gesture: the page may now make sound
     pt.wait_for(page, lambda: _sound(page) is not None and _sound(page)["context"] == "running",
@@ -105,4 +107,4 @@ def test_sound_is_off_until_asked_then_follows_the_frames_and_stops(page, page_l
     assert off["running"] is False and off["context"] == "none" and off["frequency"] is None
     assert toggle.get_attribute("aria-pressed") == "false"
     pt.click_button(page, "Pause")
-    assert not page_log.errors(), page_log.dump()
+    assert not page_log.errors, page_log.dump()
