@@ -24,6 +24,11 @@ button. L, a letter, acts only while one of the player's own controls has the fo
 (``CONTROL_CLASS``): typed elsewhere (speech input, a screen reader's keys) it does
 nothing (WCAG 2.1.4). Autoplay is skipped when the reader asked for less motion
 (``prefers-reduced-motion: reduce``); Play still starts the player.
+
+Sound (``app.figures.sound.add_sound``, off by default) adds a toggle to the player's row
+and plays each frame as a tone: pitch from the support's speed on the slab |v_R| (220-880
+Hz, log scale, over the trajectory's own range), left/right from the sideways friction
+F_f,y (pan -1..1 over its own largest |F_f,y|); the mapping is ``sound_data``, in Python.
 """
 from __future__ import annotations
 

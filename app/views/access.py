@@ -74,6 +74,16 @@ class PageAccess(JSComponent):
       if (root !== document && !root.adoptedStyleSheets.includes(sheet))
         root.adoptedStyleSheets = [...root.adoptedStyleSheets, sheet];
       nameHandles(root);
+      // A button whose widget carries data-aria-label (the player's sound toggle) is
+      // named by it: Bokeh puts html_attributes on the widget, not on its button.
+      const label = root.host && root.host.getAttribute && root.host.getAttribute("data-aria-label");
+      if (label) {
+        for (const button of root.querySelectorAll("button")) {
+          if (button.getAttribute("aria-label") !== label) button.setAttribute("aria-label", label);
+          if (!button.hasAttribute("aria-pressed"))
+            button.setAttribute("aria-pressed", String(button.classList.contains("bk-active")));
+        }
+      }
       // A card's fold button is named by its title, also where the title is clipped.
       for (const button of root.querySelectorAll("button.card-header")) {
         const name = button.textContent.replace(/\\s+/g, " ").trim();
