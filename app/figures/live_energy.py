@@ -166,7 +166,7 @@ def support_frames_data(series, params, n_frames: int) -> dict:
 
 
 def support_frames_callback(series, params, n_frames: int, scene=None, forces=None, law=None,
-                            frame=None):
+                            frame=None, frames_source=None):
     """A ``CustomJS`` for ``player.on_frame`` drawing the existing figures at the frame.
 
     ``scene``, ``forces``, ``law``: figures made by ``scene_figure``, ``forces_figure`` and
@@ -178,15 +178,20 @@ def support_frames_callback(series, params, n_frames: int, scene=None, forces=No
     new trajectory and the figures follow it, with no new callback. Every change it makes
     stays in the browser (``sync: false``): no message to the server per frame.
     With ``frame`` (the player's ``PlayerFrame``) it also draws the current frame when new
-    data arrive (attach it to the sources' ``data`` as well).
+    data arrive (attach it to the sources' ``data`` as well). ``frames_source``: an existing
+    ``support_frames`` source to fill and read (one that other callbacks, such as the
+    sound's, read too), else a new one.
     """
     data = support_frames_data(series, params, n_frames)
+    if frames_source is not None:
+        frames_source.data = data["support_frames"]
     named = {}
     for fig in (scene, forces, law):
         if fig is not None:
             named.update(sources(fig))
     args = dict(
-        data=source("support_frames", data["support_frames"]),
+        data=(frames_source if frames_source is not None
+              else source("support_frames", data["support_frames"])),
         fp=source("support_frame_params", data["support_frame_params"]),
         stripes_n=STRIPES, arrow_scale=ARROW_SCALE, room=[LABEL_ROOM_X, LABEL_ROOM_Y],
         colors=[SLAB_COLOR, VREL_COLOR, FORCE_COLOR],

@@ -28,7 +28,7 @@ nothing (WCAG 2.1.4). Autoplay is skipped when the reader asked for less motion
 Sound (``app.figures.sound.add_sound``, off by default) adds a toggle to the player's row
 and plays each frame as a tone: pitch from the support's speed on the slab |v_R| (220-880
 Hz, log scale, over the trajectory's own range), left/right from the sideways friction
-F_f,y (pan -1..1 over its own largest |F_f,y|); the mapping is ``sound_data``, in Python.
+F_f,y (pan -1..1 over its own largest |F_f,y|); the mapping (``TONES_JS``) runs in the page.
 """
 from __future__ import annotations
 

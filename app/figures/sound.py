@@ -1,32 +1,35 @@
 """Sound for the browser-side player: the support's motion heard, off until asked for.
 
-``sound_data(v_R, F_y)`` maps each frame of one contact to a tone (the mapping, defined
-here once):
+The page maps each frame of one contact to a tone (``TONES_JS``, the mapping, defined here
+once and run in the browser from the frames it already holds, so a slider move sends no
+sound data):
 
 * pitch follows the support's speed on the slab |v_R| (``v_R = v - (1, 0)``, Eq. 4):
   the trajectory's own slowest frame sounds at ``PITCH_HZ[0]`` (220 Hz), its fastest at
   ``PITCH_HZ[1]`` (880 Hz), on a log scale (equal steps of speed are equal musical
   intervals), so sticking (|v_R| near 0) is a low steady note and slipping a rising one;
+  a trajectory of constant speed sounds at the geometric mean;
 * the tone is panned by the sideways friction on the support F_f,y / f_N (Eq. 4): left
   for -y, right for +y, scaled by the trajectory's own largest |F_f,y| so the pan spans
   [-1, 1] and no sideways friction stays in the middle.
 
-``add_sound(player, data)`` puts a ``Toggle`` (``SOUND_LABEL``, named ``SOUND_NAME`` for
+``add_sound(player, frames)`` puts a ``Toggle`` (``SOUND_LABEL``, named ``SOUND_NAME`` for
 screen readers) in the player's row and attaches Web Audio to the player's per-frame
-callback (``player.on_frame``): no server round trip per frame. The ``AudioContext`` is
-made only when the reader switches the sound on (browsers allow audio after a gesture),
-the tone is silent while the player is paused, and switching it off stops the oscillator
-and closes the context. The page exposes ``window.__mp_sound`` (read-only: ``running``,
-``frequency``, ``pan``, ``frame``, ``context``, ``oscillator_hz``, ``gain``) so a test can hear what a reader hears.
+callback (``player.on_frame``): no server round trip per frame. ``frames`` is the player's
+``support_frames`` source (columns ``v_R`` and ``F_y``, one row per frame). The
+``AudioContext`` is made only when the reader switches the sound on (browsers allow audio
+after a gesture), the tone is silent while the player is paused, and switching it off
+stops the oscillator and closes the context. The page exposes ``window.__mp_sound``
+(read-only: ``running``, ``frequency``, ``pan``, ``frame``, ``context``, ``oscillator_hz``,
+``gain``) so a test can hear what a reader hears.
 """
 from __future__ import annotations
 
-import numpy as np
 from bokeh.models import ColumnDataSource, CustomJS, Toggle
 
 from .player import CONTROL_CLASS, BrowserPlayer
 
-__all__ = ["PITCH_HZ", "SOUND_NAME", "SOUND_LABEL", "sound_data", "add_sound"]
+__all__ = ["PITCH_HZ", "SOUND_NAME", "SOUND_LABEL", "TONES_JS", "add_sound"]
 
 #: Tone at the trajectory's slowest and fastest |v_R| [Hz] (a log scale between them).
 PITCH_HZ = (220.0, 880.0)
@@ -39,25 +42,25 @@ SOUND_LABEL = "♪ Sound"
 SOUND_NAME = "Sound: pitch follows the support's speed, left/right the sideways friction"
 
 
-def sound_data(v_R, F_y) -> dict:
-    """Each frame's tone: ``hz`` from |v_R| and ``pan`` in [-1, 1] from F_f,y (see the module).
-
-    A trajectory of constant speed sounds at the middle of ``PITCH_HZ`` (geometric mean);
-    one without sideways friction in the middle of the stereo field.
-    """
-    speed = np.abs(np.asarray(v_R, float))
-    side = np.asarray(F_y, float)
-    if speed.ndim != 1 or side.shape != speed.shape or speed.size == 0:
-        raise ValueError(f"v_R ({speed.shape}) and F_y ({side.shape}) must be one value per "
-                         "frame, as many of each")
-    if not (np.all(np.isfinite(speed)) and np.all(np.isfinite(side))):
-        raise ValueError("v_R and F_y must be finite on every frame (a trajectory in contact)")
-    lo, hi = PITCH_HZ
-    span = float(speed.max() - speed.min())
-    u = (speed - speed.min()) / span if span > 0 else np.full(speed.shape, 0.5)
-    largest = float(np.abs(side).max())
-    pan = np.clip(side / largest, -1.0, 1.0) if largest > 0 else np.zeros(side.shape)
-    return {"hz": lo * (hi / lo) ** u, "pan": pan}
+#: Each frame's tone from the frames' speeds and sideways forces: a JavaScript function
+#: ``(v_R, F_y, lo, hi) -> {hz, pan}`` (see the module; ``lo, hi = PITCH_HZ``).
+TONES_JS = """
+(function (v_R, F_y, lo, hi) {
+  const n = v_R.length, speed = Array.from(v_R, Math.abs), hz = new Array(n),
+        pan = new Array(n);
+  let vmin = Infinity, vmax = -Infinity, largest = 0;
+  for (let i = 0; i < n; i++) {
+    vmin = Math.min(vmin, speed[i]); vmax = Math.max(vmax, speed[i]);
+    largest = Math.max(largest, Math.abs(F_y[i]));
+  }
+  const span = vmax - vmin;
+  for (let i = 0; i < n; i++) {
+    const u = span > 0 ? (speed[i] - vmin) / span : 0.5;
+    hz[i] = lo * Math.pow(hi / lo, u);
+    pan[i] = largest > 0 ? Math.min(1, Math.max(-1, F_y[i] / largest)) : 0;
+  }
+  return {hz: hz, pan: pan};
+})"""
 
 
 # The sound's state lives in the page (window.__mp_sound_reg, keyed by the toggle's id);
@@ -67,12 +70,22 @@ const reg = (window.__mp_sound_reg = window.__mp_sound_reg || {});
 let s = reg[toggle.id];
 if (s === undefined) {
   s = reg[toggle.id] = {ctx: null, osc: null, panner: null, amp: null, hz: null, pan: null,
-                        frame: -1};
+                        frame: -1, from: null, tones: null};
+  // Each frame's tone, worked out again only when the frames change.
+  s.tone = () => {
+    const d = frames.data;
+    if (s.from !== d) {
+      s.from = d;
+      s.tones = (d.v_R && d.v_R.length && d.F_y && d.F_y.length === d.v_R.length)
+        ? TONES(d.v_R, d.F_y, pitch[0], pitch[1]) : null;
+    }
+    return s.tones;
+  };
   s.level = () => (toggle.active && play.active) ? gain : 0;
   s.apply = () => {
     if (s.ctx === null) return;
-    const d = sound.data, t = s.ctx.currentTime;
-    if (d.hz && d.hz.length) {
+    const d = s.tone(), t = s.ctx.currentTime;
+    if (d !== null) {
       const i = Math.min(Math.max(frame.value, 0), d.hz.length - 1);
       s.frame = i; s.hz = d.hz[i]; s.pan = d.pan[i];
       s.osc.frequency.setTargetAtTime(s.hz, t, glide);
@@ -117,24 +130,25 @@ if (s === undefined) {
   });
 }
 """
+_PRELUDE = _PRELUDE.replace("TONES(", TONES_JS.strip() + "(")
 
 
-def add_sound(player: BrowserPlayer, data: ColumnDataSource) -> Toggle:
-    """A sound toggle in ``player``'s row, playing ``data`` (``sound_data`` columns ``hz``
-    and ``pan``, one row per frame; replace its data for a new trajectory)."""
+def add_sound(player: BrowserPlayer, frames: ColumnDataSource) -> Toggle:
+    """A sound toggle in ``player``'s row, playing ``frames`` (the player's frames, columns
+    ``v_R`` and ``F_y``, one row per frame; replace its data for a new trajectory)."""
     toggle = Toggle(label=SOUND_LABEL, active=False, width=110, height=44,
                     name=f"{player.frame.name.removesuffix('_frame')}_sound",
                     css_classes=[CONTROL_CLASS], styles={"font-size": "16px"},
                     html_attributes={"title": SOUND_NAME, "data-aria-label": SOUND_NAME})
-    args = dict(toggle=toggle, play=player.play, frame=player.frame, sound=data,
-                gain=GAIN, glide=GLIDE_S)
+    args = dict(toggle=toggle, play=player.play, frame=player.frame, frames=frames,
+                pitch=list(PITCH_HZ), gain=GAIN, glide=GLIDE_S)
     toggle.js_on_change("active", CustomJS(args=args, code=_PRELUDE + """
         if (toggle.active) s.open(); else s.close();
         s.pressed();"""))
     follow = CustomJS(args=args, code=_PRELUDE + "s.apply();")
     player.on_frame(follow)
     player.play.js_on_change("active", follow)
-    data.js_on_change("data", follow)
+    frames.js_on_change("data", follow)
     buttons = player.layout.children[0]
     at = buttons.children.index(player.loop) + 1
     buttons.children = [*buttons.children[:at], toggle, *buttons.children[at:]]

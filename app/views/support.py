@@ -32,7 +32,7 @@ from ..figures.live_energy import (energy_frames, energy_live_data, energy_live_
 from ..figures.pinned import add_pinned, forces_A, orbit_A, show_pinned
 from ..figures.player import READY_DELAY_MS, browser_player
 from ..figures.scene import view_box
-from ..figures.sound import add_sound, sound_data
+from ..figures.sound import add_sound
 from ..motion_words import plots_description
 from ..results import SessionResults
 from ..state import ExplorerState
@@ -71,10 +71,11 @@ class SupportView(pn.viewable.Viewer):
         p = self.state.params
         self.player = browser_player(N_FRAMES, times=np.zeros(N_FRAMES), name="support_player",
                                      width=680, responsive=True, autoplay=self.state.play)
-        # Optional sound (off until the reader switches it on): pitch from |v_R|, pan from
-        # the sideways friction, played in the browser with the frames.
-        self.sound = source("support_sound", {"hz": np.zeros(0), "pan": np.zeros(0)})
-        self.sound_toggle = add_sound(self.player, self.sound)
+        # The player's frames (filled with the first trajectory) and the optional sound
+        # (off until the reader switches it on): pitch from |v_R|, pan from the sideways
+        # friction, worked out and played in the browser from these frames.
+        self.frames = source("support_frames", {"v_R": np.zeros(0), "F_y": np.zeros(0)})
+        self.sound_toggle = add_sound(self.player, self.frames)
         self.scene = F.scene_figure(None, p, 0, width=340, height=330)
         self.forces = F.forces_figure(None, p, 0, width=340, height=330)
         self.friction = F.friction_law_figure(None, p, 0, width=340, height=225)
@@ -138,12 +139,10 @@ class SupportView(pn.viewable.Viewer):
                 self.energy.y_range.update(**dict(zip(("start", "end"),
                                                       energy_live_range(energies))))
             self.player.set_times(frames["support_frames"]["tau"])
-            self.sound.data = sound_data(frames["support_frames"]["v_R"],
-                                         frames["support_frames"]["F_y"])
             if self._frames_js is None:
                 self._frames_js = support_frames_callback(
                     s, p, N_FRAMES, scene=self.scene, forces=self.forces, law=self.friction,
-                    frame=self.player.frame)
+                    frame=self.player.frame, frames_source=self.frames)
                 self.player.on_frame(self._frames_js)
                 self._frames_js.args["fp"].js_on_change("data", self._frames_js)
             else:

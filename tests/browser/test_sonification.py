@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from app.figures.sound import PITCH_HZ, SOUND_NAME, sound_data
+from app.figures.sound import PITCH_HZ, SOUND_NAME
 
 from . import page_tools as pt
 
@@ -41,6 +41,14 @@ def _sound(page) -> dict | None:
     }""")
 
 
+def _expected(v_R, F_y) -> dict:
+    """The tones the module's mapping promises (app/figures/sound.py): log pitch over the
+    trajectory's own |v_R| range, pan by F_y over its largest |F_y|."""
+    speed, lo, hi = np.abs(v_R), *PITCH_HZ
+    u = (speed - speed.min()) / np.ptp(speed)
+    return {"hz": lo * (hi / lo) ** u, "pan": F_y / np.abs(F_y).max()}
+
+
 def _contexts(page) -> list[str]:
     return page.evaluate("() => window.__mp_contexts.map((c) => c.state)")
 
@@ -49,12 +57,12 @@ def test_sound_is_off_until_asked_then_follows_the_frames_and_stops(page, page_l
     page.add_init_script(_COUNT_CONTEXTS)
     pt.wait_for_app(page, f"{app_url}?regime=soft")
     pt.settle(page, names=["support_frames"])
-    pt.wait_for(page, lambda: len((pt.read_source(page, "support_sound") or {}).get("hz", []))
-                == 300, timeout_s=120, what="the frames' tones")
+    pt.wait_for(page, lambda: len((pt.read_source(page, "support_frames") or {}).get("v_R", []))
+                == 300, timeout_s=120, what="the player's frames")
     frames = pt.read_source(page, "support_frames")
     assert "soft regime" in page.locator(".support-description [role=status]").first \
         .text_content()
-    expected = sound_data(np.array(frames["v_R"]), np.array(frames["F_y"]))
+    expected = _expected(np.array(frames["v_R"]), np.array(frames["F_y"]))
 
     toggle = page.get_by_role("button", name=SOUND_NAME)
     pt.wait_for(page, lambda: toggle.count() == 1, what=f"a button named {SOUND_NAME!r}")
