@@ -9,8 +9,10 @@
 """
 from app.edge import install
 from app.jobs import start_warm_up
+from app.opening import BUSY_HTML
+from app.pages import page_gate
 
 
 def on_server_loaded(server_context):
-    install()
+    install(BUSY_HTML, lambda remote_ip: page_gate().has_room(remote_ip))
     start_warm_up()

@@ -76,15 +76,18 @@ def untested_note() -> str | None:
             "app/edge.py")
 
 
-def install() -> bool:
+def install(busy_html: str, has_room) -> bool:
     """Install the server guards 1-2 (once per process) on the tested stack; elsewhere
-    log ``untested_note()`` once. Returns whether they are installed."""
+    log ``untested_note()`` once. Returns whether they are installed.
+
+    ``busy_html``: the page a client without room gets; ``has_room(remote_ip)``: whether
+    a client may have a page built (the page gate, ``app.pages``)."""
     note = untested_note()
     if note is not None:
         log.warning(note)
         return False
     add_security_headers()
-    answer_busy_before_building()
+    answer_busy_before_building(busy_html, has_room)
     return True
 
 
@@ -122,21 +125,18 @@ def drop_empty_session_id(request) -> None:
 
 
 # ---------------------------------------------------------------------- 2. busy page
-def answer_busy_before_building() -> None:
+def answer_busy_before_building(busy_html: str, has_room) -> None:
     from panel.io.server import DocHandler
-
-    from app.opening import BUSY_HTML
-    from app.pages import page_gate
 
     if getattr(DocHandler.get, "_busy_first", False):
         return
     build = DocHandler.get
 
     async def get(self, *args, **kwargs):
-        if not page_gate().has_room(self.request.remote_ip):
+        if not has_room(self.request.remote_ip):
             self.set_header("Cache-Control", "no-store")
             self.set_header("Content-Type", "text/html; charset=UTF-8")
-            self.write(BUSY_HTML)
+            self.write(busy_html)
             return None
         return await build(self, *args, **kwargs)
 

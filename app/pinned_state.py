@@ -1,4 +1,4 @@
-"""The pinned state "A" of a comparison: what it keeps, and how the URL writes it.
+"""The pinned state "A" of a comparison: what it keeps.
 
 A pinned state keeps every input of the results it is compared on: the support's
 (``PINNED_KEYS``: springs, load, theta0, tolerance, load factor; Eqs. 1-10 of
@@ -6,7 +6,8 @@ docs/model.md) and the Design tab's (``PINNED_DESIGN_KEYS``: the pillars' physic
 inputs, which make the dimensionless point of Eq. 5, and the orientation distribution:
 family, angle, concentration, sliding direction psi, and a mixture's second component).
 
-The URL holds it as one parameter, its values written as ``app.urlstate`` writes the
+The URL holds it as one parameter (``app.urlstate.pinned_text`` writes it,
+``parse_pinned`` reads it), its values written as ``app.urlstate`` writes the
 controls' (same URL keys, same readers) and joined as ``key:value`` by commas: the
 support's always, ``rtol`` and ``beta`` only when not the default, and the Design tab's
 only where they differ from the defaults, so a comparison that never touched the Design
@@ -19,12 +20,11 @@ the one written is worse than comparing with none.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from urllib.parse import unquote
 
-from .urlstate import DEFAULTS, DESIGN_INPUTS, MAX_PINNED_CHARS, parse, serialize
+from .defaults import DEFAULTS, DESIGN_INPUTS
 
-__all__ = ["PINNED_KEYS", "PINNED_DESIGN_KEYS", "PINNED_ALL", "PINNED_URL_KEYS",
-           "MAX_PINNED_CHARS", "complete", "pinned_text", "parse_pinned"]
+__all__ = ["PINNED_KEYS", "PINNED_DIST_KEYS", "PINNED_DESIGN_KEYS", "PINNED_ALL",
+           "PINNED_URL_KEYS", "complete"]
 
 #: What a pinned state keeps of the support: every input of the support, the orientation
 #: sweep, the uniform array and the load curve.
@@ -42,36 +42,8 @@ PINNED_URL_KEYS = ("k_r", "k_theta", "F_N", "theta0_deg", "rtol", "beta",
                    "dist", "dist_deg", "kappa", "psi_deg", "mix", "dist2", "dist2_deg", "kappa2",
                    "hist")
 
-PINNED_EXPECTED = ("key:value pairs joined by commas, of " + ", ".join(PINNED_URL_KEYS[:6])
-                   + " and the Design tab's keys, such as k_r:0.5,k_theta:0.2,F_N:1,"
-                   "theta0_deg:90")
-
 
 def complete(pinned: Mapping) -> dict:
     """Every parameter of a pinned state (``PINNED_ALL``): those ``pinned`` omits (a
     state pinned before the Design tab's were kept) at their defaults."""
     return {name: pinned.get(name, DEFAULTS[name]) for name in PINNED_ALL}
-
-
-def _escape(text: str) -> str:
-    return text.replace("%", "%25").replace(",", "%2C")
-
-
-def pinned_text(pinned: Mapping) -> str:
-    """The ``A=`` text of a pinned state: its URL values (as ``serialize``) as ``k:v,...``."""
-    query = serialize({**DEFAULTS, **complete(pinned)})
-    return ",".join(f"{key}:{_escape(query[key])}" for key in PINNED_URL_KEYS if key in query)
-
-
-def parse_pinned(text: str) -> dict | None:
-    """The pinned state an ``A=`` text describes (defaults for keys it omits), or None when
-    any part is unusable."""
-    pairs = [part.split(":", 1) for part in text.split(",") if part.strip()]
-    if not pairs or any(len(pair) != 2 for pair in pairs):
-        return None
-    query = {key.strip(): unquote(value.strip()) for key, value in pairs}
-    if not set(query) <= set(PINNED_URL_KEYS):
-        return None
-    values, notices = parse(query)
-    return None if notices else complete(values)
-

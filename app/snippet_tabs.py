@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 
 from model.cli.snippet import params_source, source
+from model.regimes import EXPLORED_MAP
 
 from . import worker
 from .figures.arrays import AVERAGE_COLUMNS, map_column, map_title
@@ -63,10 +64,10 @@ k_r, k_theta = the_map.k_r, the_map.k_theta
 shown = np.asarray(the_map.{column}, float)  # [k_r, k_theta]'''
     else:
         made = f'''\
-# Uniform arrays on an n x n log grid of [0.01, 3] (the page draws a
+# Uniform arrays on an n x n log grid of {list(EXPLORED_MAP)} (the page draws a
 # {worker.MAP_COARSE_N} x {worker.MAP_COARSE_N} grid first, then this one)
 n = {worker.MAP_FINE_N}
-k_r = k_theta = np.logspace(-2, math.log10(3.0), n)
+k_r = k_theta = np.geomspace({EXPLORED_MAP[0]!r}, {EXPLORED_MAP[1]!r}, n)
 sweep = regime_map(k_r=k_r, k_theta=k_theta, F_N={source(F_N)}, beta={source(beta)},
                    tol={source(worker.UNIFORM_TOL)})
 shown = np.asarray(sweep.columns["{column}"], float).reshape(n, n)  # [k_r, k_theta]

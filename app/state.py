@@ -18,10 +18,10 @@ from model.controls import OBJECTIVES
 from model.units import to_si, ureg
 
 from .pinned_state import PINNED_ALL, PINNED_DIST_KEYS, PINNED_KEYS, complete
-from .urlstate import (AVERAGES, BETA_BOUNDS, BOUND_BOUNDS, DEFAULTS, DESIGN_INPUTS,
+from .defaults import (AVERAGES, BETA_BOUNDS, BOUND_BOUNDS, DEFAULTS, DESIGN_INPUTS,
                        DIST_FAMILIES, F_N_BOUNDS, K_BOUNDS, KAPPA_BOUNDS, LAW_INPUTS,
-                       MAP_QUANTITIES, MIX_BOUNDS, ORIENTATIONS, PSI_BOUNDS, RTOLS, TABS, parse,
-                       serialize, to_search)
+                       MAP_QUANTITIES, MIX_BOUNDS, ORIENTATIONS, PSI_BOUNDS, RTOLS, TABS)
+from .urlstate import parse, serialize, to_search
 
 #: Preset buttons: regime -> (k_r, k_theta) (Fig. 6 caption).
 PRESETS = {name: (p.k_r, p.k_theta) for name, p in REGIMES.items()}

@@ -48,103 +48,31 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Mapping
-from urllib.parse import parse_qs, urlencode
+from urllib.parse import parse_qs, unquote, urlencode
 
 from model import REGIMES
 from model.controls import CONTROLS, OBJECTIVES
-from model.quantities import AVERAGES as _AVERAGES, MAP_FIGURES
 from model.friction_law import COEFFICIENTS, FrictionLaw
 from model.params import RANGES
-from model.units import PillarDesign, quantity, to_si
+from model.units import quantity, to_si
 
+from .defaults import (AVERAGES, BETA_BOUNDS, BOUND_BOUNDS, DEFAULTS, DESIGN_DEFAULTS,
+                       DESIGN_INPUTS, DIST_DEG, DIST_FAMILIES, F_N_BOUNDS, K_BOUNDS,
+                       KAPPA_BOUNDS, MAP_QUANTITIES, MIX_BOUNDS, ORIENTATIONS, PSI_BOUNDS, RTOLS,
+                       TABS, THETA0_DEG)
 from .histogram import LINK_MAX_BINS, from_link, link_text
-
-# The ranges and defaults are the model's (model/controls.py); only the page's own
-# choices (tabs, projector mode) are defined here.
-K_BOUNDS = CONTROLS["k_r"].bounds
-F_N_BOUNDS = CONTROLS["F_N"].bounds
-#: The fixed load factor beta = N_c0/N_c, bounded below by the physical limit of the model
-#: (``model.validation.BETA``).
-BETA_BOUNDS = CONTROLS["beta"].bounds
-THETA0_DEG = CONTROLS["theta0_deg"].interval
-RTOLS = CONTROLS["rtol"].choices
-TABS = ("support", "array", "polar", "map", "load", "equations", "design")
-ORIENTATIONS = ("uniform", "fixed")
-AVERAGES = tuple(_AVERAGES)
-MAP_QUANTITIES = tuple(MAP_FIGURES)
+from .pinned_state import PINNED_URL_KEYS, complete
 
 #: Longest URL value read, in characters (the page writes at most a histogram's 100); a
 #: longer one is refused unread: Python converts at most 4300 digits to an int (Panel's
 #: parser fails on ``?x=`` + 4301 digits), and no request may make the server convert more.
 MAX_VALUE_CHARS = 100
 
-#: The default view: the pendulum support of Fig. 7a (theta0 = 90 deg, F_N = 1).
-DEFAULTS = dict(k_r=CONTROLS["k_r"].default, k_theta=CONTROLS["k_theta"].default,
-                F_N=CONTROLS["F_N"].default, theta0=CONTROLS["theta0_deg"].default,
-                rtol=CONTROLS["rtol"].default, beta_mode=CONTROLS["beta_mode"].default,
-                beta=CONTROLS["beta"].default, average=AVERAGES[0],
-                map_quantity=MAP_QUANTITIES[0], tab="support", projector=False,
-                orientation="uniform", play=False, pinned=None)
-
 #: The longest ``A=`` value read (``app.pinned_state``): the support's values (under 100
 #: characters) and every design input at its longest (40; the friction law's included)
 #: with every distribution value take under 1100.
 MAX_PINNED_CHARS = 1200
 
-# ---------------------------------------------------------------- Design tab
-#: The default pillars: the LDPE example of the notes (``PillarDesign.example``) at V0 = 1
-#: m/s, not 1 cm/s, where k~ ~ 5e6 lies beyond the model range, is computed scaled to 1e6
-#: and its array costs minutes; at 1 m/s k~_r ~ 550, k~_theta ~ 4900 (outside the paper's
-#: map, stiff) compute in seconds. The speed line on the map shows both.
-_EXAMPLE = PillarDesign.example(V0="1 m/s").to_dict()
-#: The display unit of each velocity input (the example's cm/s reads badly at 1 m/s).
-_SHOWN_UNIT = {"V0": "m/s"}
-
-
-def _example_text(field: str) -> str:
-    value, unit = _EXAMPLE.get(field), _SHOWN_UNIT.get(field, _EXAMPLE["units"].get(field, ""))
-    if value is None:
-        return ""
-    if field in _SHOWN_UNIT:
-        value = quantity(field, f"{value} {_EXAMPLE['units'][field]}").to(unit).magnitude
-    return f"{value:.6g} {unit}".strip()
-
-
-#: Design inputs: state parameter -> (URL key, ``PillarDesign`` field, label, what it is).
-#: The text of each is a quantity with its unit, parsed by ``model.units`` (pint).
-DESIGN_INPUTS = {
-    "design_D": ("d_D", "D", "D", "pillar diameter D"),
-    "design_h": ("d_h", "h", "h", "pillar height h"),
-    "design_E": ("d_E", "E", "E", "Young's modulus E"),
-    "design_G": ("d_G", "G", "G (or ν)", "shear modulus G (empty: G = E/(2(1+ν)))"),
-    "design_nu": ("d_nu", "nu", "ν", "Poisson's ratio ν (used when G is empty)"),
-    "design_rho": ("d_rho", "rho", "ρ", "density ρ of the pillar"),
-    "design_r0": ("d_r0", "r0", "r₀", "radial rest length r₀"),
-    "design_d_x": ("d_dx", "d_x", "d_x", "pillar spacing along x"),
-    "design_d_y": ("d_dy", "d_y", "d_y", "pillar spacing along y"),
-    "design_L_x": ("d_Lx", "L_x", "L_x", "slab length L_x along the sliding direction"),
-    "design_L_y": ("d_Ly", "L_y", "L_y", "slab width L_y"),
-    "design_F_N": ("d_FN", "F_N", "F_N (total)", "total normal load F_N on the slab"),
-    "design_V0": ("d_V0", "V0", "V₀", "sliding speed V₀"),
-    "design_V_s": ("d_Vs", "V_s", "V_s", "velocity scale V_s of the friction law (ζ = V₀/V_s)"),
-    "design_mu_s": ("d_mus", "mu_s", "μ_s", "static friction coefficient μ_s of the friction "
-                                          "law (Eq. 4)"),
-    "design_A": ("d_A", "A", "A", "shape A of the friction law (Eq. 4)"),
-    "design_B": ("d_B", "B", "B", "shape B of the friction law (Eq. 4)"),
-}
-#: The design inputs that make its friction law, Eq. (4) (``model.FrictionLaw``).
-LAW_INPUTS = tuple(name for name, v in DESIGN_INPUTS.items() if v[1] in COEFFICIENTS)
-DESIGN_DEFAULTS = {name: _example_text(v[1]) for name, v in DESIGN_INPUTS.items()}
-#: Orientation distributions the Design tab edits (``model.distributions.FAMILIES``' names).
-DIST_FAMILIES = ("fixed", "pair", "vonmises", "uniform", "histogram")
-KAPPA_BOUNDS = (0.0, 1e4)
-PSI_BOUNDS = (-180.0, 180.0)
-MIX_BOUNDS = CONTROLS["mix_weight"].bounds
-BOUND_BOUNDS = CONTROLS["bound"].bounds
-DEFAULTS.update(DESIGN_DEFAULTS, dist_family="vonmises", dist_deg=90.0, dist_kappa=4.0,
-                dist_psi=0.0, mix_weight=CONTROLS["mix_weight"].default,
-                dist2_family="fixed", dist2_deg=0.0, dist2_kappa=4.0, dist_hist=None,
-                opt_objective=CONTROLS["objective"].default, opt_bound=CONTROLS["bound"].default)
 #: The Design tab's numeric distribution and optimisation controls: URL key -> parameter.
 _DESIGN_NUMBERS = (("dist_deg", "dist_deg"), ("kappa", "dist_kappa"), ("psi_deg", "dist_psi"),
                    ("mix", "mix_weight"), ("dist2_deg", "dist2_deg"), ("kappa2", "dist2_kappa"))
@@ -199,12 +127,14 @@ _READERS = {
     "orient": ("orientation", _choice(ORIENTATIONS), "'uniform' or 'fixed'"),
     "play": ("play", _flag, "1 or 0"),
     "dist": ("dist_family", _choice(DIST_FAMILIES), "one of " + ", ".join(DIST_FAMILIES)),
-    "dist_deg": ("dist_deg", _in(0.0, 360.0, hi_open=True), "degrees in [0, 360)"),
+    "dist_deg": ("dist_deg", _in(DIST_DEG.lo, DIST_DEG.hi, hi_open=DIST_DEG.hi_open),
+                 f"degrees in {DIST_DEG}"),
     "kappa": ("dist_kappa", _in(*KAPPA_BOUNDS), f"a number in {list(KAPPA_BOUNDS)}"),
     "psi_deg": ("dist_psi", _in(*PSI_BOUNDS), f"degrees in {list(PSI_BOUNDS)}"),
     "mix": ("mix_weight", _in(*MIX_BOUNDS), CONTROLS["mix_weight"].expected()),
     "dist2": ("dist2_family", _choice(DIST_FAMILIES), "one of " + ", ".join(DIST_FAMILIES)),
-    "dist2_deg": ("dist2_deg", _in(0.0, 360.0, hi_open=True), "degrees in [0, 360)"),
+    "dist2_deg": ("dist2_deg", _in(DIST_DEG.lo, DIST_DEG.hi, hi_open=DIST_DEG.hi_open),
+                  f"degrees in {DIST_DEG}"),
     "kappa2": ("dist2_kappa", _in(*KAPPA_BOUNDS), f"a number in {list(KAPPA_BOUNDS)}"),
     "objective": ("opt_objective", _choice(OBJECTIVES), " or ".join(map(repr, OBJECTIVES))),
     "bound": ("opt_bound", _in(*BOUND_BOUNDS), CONTROLS["bound"].expected()),
@@ -280,7 +210,6 @@ def serialize(values: Mapping) -> dict[str, str]:
     if link_text(design["dist_hist"]):
         out["hist"] = link_text(design["dist_hist"])
     if values.get("pinned"):
-        from .pinned_state import pinned_text  # which writes A with this function
         out["A"] = pinned_text(values["pinned"])
     return out
 
@@ -330,7 +259,6 @@ def parse(query: Mapping | str) -> tuple[dict, list[str]]:
             notices.append(_too_long(key, text))
             continue
         if key == "A":
-            from .pinned_state import PINNED_EXPECTED, parse_pinned  # which reads with parse
             pinned = parse_pinned(text)
             if pinned is None:
                 notices.append(_notice("A", text, PINNED_EXPECTED))
@@ -377,3 +305,33 @@ def _notice(key: str, text: str, expected: str) -> str:
     return (f"URL parameter {key}={_shown(text)} is not usable ({expected} expected); "
             "the default is used.")
 
+
+# ---------------------------------------------------------------- the pinned state A
+#: What ``A=`` holds, for notices.
+PINNED_EXPECTED = ("key:value pairs joined by commas, of " + ", ".join(PINNED_URL_KEYS[:6])
+                   + " and the Design tab's keys, such as k_r:0.5,k_theta:0.2,F_N:1,"
+                   "theta0_deg:90")
+
+
+def _escape(text: str) -> str:
+    return text.replace("%", "%25").replace(",", "%2C")
+
+
+def pinned_text(pinned: Mapping) -> str:
+    """The ``A=`` text of a pinned state (``app.pinned_state``): its URL values, as
+    ``serialize`` writes them, as ``key:value,...``."""
+    query = serialize({**DEFAULTS, **complete(pinned)})
+    return ",".join(f"{key}:{_escape(query[key])}" for key in PINNED_URL_KEYS if key in query)
+
+
+def parse_pinned(text: str) -> dict | None:
+    """The pinned state an ``A=`` text describes (defaults for keys it omits), or None when
+    any part is unusable."""
+    pairs = [part.split(":", 1) for part in text.split(",") if part.strip()]
+    if not pairs or any(len(pair) != 2 for pair in pairs):
+        return None
+    query = {key.strip(): unquote(value.strip()) for key, value in pairs}
+    if not set(query) <= set(PINNED_URL_KEYS):
+        return None
+    values, notices = parse(query)
+    return None if notices else complete(values)

@@ -24,6 +24,7 @@ import numpy as np
 from model import (REGIMES, FixedArrayResult, Params, SupportResult, fixed_orientation,
                    simulate_support)
 from model import shipped_map
+from model.regimes import map_axis
 from model.shipped_map import load_regime_map
 from model.sweeps import orientation_table, regime_map
 
@@ -161,7 +162,7 @@ def compute_map(F_N: float, beta="self", n: int = MAP_FINE_N):
             return load_regime_map() if load == 1.0 else load_regime_map(F_N=load)
         except (OSError, ValueError):  # not shipped after all: compute it
             pass
-    k = np.logspace(-2, math.log10(3.0), int(n))  # the axes of Fig. 5
+    k = map_axis(n)  # the axes of Fig. 5
     sweep = regime_map(k_r=k, k_theta=k, F_N=F_N, beta=beta, tol=UNIFORM_TOL)
     cols = sweep.columns
 

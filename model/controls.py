@@ -18,7 +18,8 @@ from .params import REGIMES, Params
 from .validation import BETA, Interval
 
 __all__ = ["Control", "CONTROLS", "DEFAULT_REGIME", "STIFFNESS_RANGE", "LOAD_RANGE",
-           "OBJECTIVES", "BOUND_RANGE", "MIX_WEIGHT"]
+           "OBJECTIVES", "BOUND_RANGE", "MIX_WEIGHT", "DIST_FAMILIES", "KAPPA_RANGE",
+           "PSI_RANGE"]
 
 #: Both stiffness axes of Figs. 5 and 8 (sampled logarithmically).
 STIFFNESS_RANGE = Interval(0.01, 3.0)
@@ -33,6 +34,16 @@ OBJECTIVES = ("min-FTx", "max-FTy")
 BOUND_RANGE = Interval(0.0, 2.0)
 #: The weight of a mixture's second component (0: no mixture, 1: the second alone).
 MIX_WEIGHT = Interval(0.0, 1.0)
+#: The orientation distributions a design edits (``model.distributions.FAMILIES``' names;
+#: a mixture is two of them, made with the mixture weight).
+DIST_FAMILIES = ("fixed", "pair", "vonmises", "uniform", "histogram")
+#: The von Mises concentration a design edits: 0 (uniform) up to 1e4 (a spread of ~0.6 deg,
+#: narrower than a real array's; the model accepts up to ``distributions.KAPPA_MAX``).
+KAPPA_RANGE = Interval(0.0, 1e4)
+#: The sliding direction psi to the array [deg].
+PSI_RANGE = Interval(-180.0, 180.0)
+#: An angle in degrees, one turn.
+_TURN_DEG = Interval(0.0, 360.0, hi_open=True)
 
 
 @dataclass(frozen=True)
@@ -65,7 +76,7 @@ CONTROLS = {
                        scale="log"),
     "F_N": Control("normal load F_N", _PARAMS.F_N, LOAD_RANGE, scale="log"),
     "theta0_deg": Control("rest orientation theta0 [deg]", math.degrees(_PARAMS.theta0),
-                          Interval(0.0, 360.0, hi_open=True)),
+                          _TURN_DEG),
     "beta": Control("fixed load factor beta = N_c0/N_c", _PARAMS.beta, BETA),
     "beta_mode": Control("load factor: self-consistent or fixed", "self",
                          choices=("self", "fixed")),
@@ -76,4 +87,14 @@ CONTROLS = {
     "bound": Control("bound on |F_T,y|/(mu0 F_N) (min-FTx) or F_T,x/(mu0 F_N) (max-FTy); "
                      "none when not given", None, BOUND_RANGE),
     "mix_weight": Control("weight of the mixture's second component", 0.0, MIX_WEIGHT),
+    # The orientation distribution of a design (a von Mises family about theta0 = 90 deg;
+    # a mixture's second component starts as a fixed orientation at 0 deg).
+    "dist_family": Control("orientation distribution", "vonmises", choices=DIST_FAMILIES),
+    "dist_deg": Control("its angle: theta0 (fixed, pair) or the mean (von Mises) [deg]",
+                        math.degrees(_PARAMS.theta0), _TURN_DEG),
+    "kappa": Control("von Mises concentration kappa", 4.0, KAPPA_RANGE),
+    "psi_deg": Control("sliding direction psi to the array [deg]", 0.0, PSI_RANGE),
+    "dist2_family": Control("the mixture's second distribution", "fixed",
+                            choices=DIST_FAMILIES),
+    "dist2_deg": Control("its angle [deg]", 0.0, _TURN_DEG),
 }

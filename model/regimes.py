@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from .controls import STIFFNESS_RANGE
 from .params import RANGES
 
 __all__ = ["EXPLORED_MAP", "MODEL_RANGE", "REGIME_SPLIT", "regime_of", "map_status",
-           "MAP_NOTE"]
+           "MAP_NOTE", "map_axis"]
 
 #: The (k~_r, k~_theta) square the paper explored (Figs. 5, 8): the explorer's controls.
 EXPLORED_MAP = STIFFNESS_RANGE.bounds
@@ -20,6 +22,15 @@ REGIME_SPLIT = math.sqrt(EXPLORED_MAP[0] * EXPLORED_MAP[1])
 #: Said of a result whose springs lie outside the explored map.
 MAP_NOTE = (f"(k_r, k_theta) outside the paper's explored map {list(EXPLORED_MAP)}^2: "
             f"computed by the same model, beyond the paper's figures")
+
+
+def map_axis(n: int) -> np.ndarray:
+    """``n`` stiffnesses spaced evenly in log over the explored map (an axis of Fig. 5).
+
+    >>> map_axis(3)
+    array([0.01      , 0.17320508, 3.        ])
+    """
+    return np.geomspace(*EXPLORED_MAP, int(n))
 
 
 def regime_of(k_r: float, k_theta: float) -> str:

@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 from app.state import PRESETS, ExplorerState, classify
-from app.urlstate import DEFAULTS, RTOLS, parse, serialize, to_search
+from app.defaults import DEFAULTS, RTOLS
+from app.urlstate import parse, serialize, to_search
 from model import REGIMES, Params
 
 
@@ -351,7 +352,7 @@ def test_the_page_builds_without_sizing_warnings(caplog):
     import panel as pn
     from bokeh.document import Document
 
-    from app.urlstate import TABS
+    from app.defaults import TABS
     from app.views import Dashboard
 
     page = Dashboard(ExplorerState())

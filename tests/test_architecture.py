@@ -61,6 +61,42 @@ def test_no_path_hacks(path):
             assert node.func.id != "exec", f"{path.name}:{node.lineno} calls exec"
 
 
+def _module_graph(package: str) -> dict[str, set[str]]:
+    """Module of ``package`` -> the modules of ``package`` it imports, anywhere in it
+    (inside functions too: an import deferred to break a cycle is still a cycle)."""
+    files = {}
+    for path in sorted((ROOT / package).rglob("*.py")):
+        parts = list(path.relative_to(ROOT).with_suffix("").parts)
+        files[".".join(parts[:-1] if parts[-1] == "__init__" else parts)] = path
+    graph = {}
+    for name, path in files.items():
+        home = name.split(".") if path.name == "__init__.py" else name.split(".")[:-1]
+        found = set()
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom):
+                base = (home[:len(home) - node.level + 1] if node.level else [])
+                target = ".".join(base + ([node.module] if node.module else []))
+                # ``from package import module`` needs the module; a name, its module
+                found |= {f"{target}.{a.name}" if f"{target}.{a.name}" in files else target
+                          for a in node.names}
+            elif isinstance(node, ast.Import):
+                found |= {a.name for a in node.names}
+        graph[name] = {m for m in found if m in files and m != name}
+    return graph
+
+
+@pytest.mark.parametrize("package", ["app"])
+def test_no_import_cycles(package):
+    """Each module can be read after the modules it imports: no two import each other,
+    directly or through others (``graphlib`` names the cycle)."""
+    import graphlib
+
+    try:
+        tuple(graphlib.TopologicalSorter(_module_graph(package)).static_order())
+    except graphlib.CycleError as error:
+        pytest.fail(f"{package}/ has an import cycle: {' -> '.join(error.args[1])}")
+
+
 @pytest.mark.parametrize("module", VIEW_MODULES)
 def test_views_do_not_import_one_another(module):
     # A view may hold the export controls (``export``), which read only state and results.

@@ -17,9 +17,9 @@ from hypothesis import strategies as st
 
 from app import results as results_module
 from app.state import ExplorerState
-from app.pinned_state import PINNED_ALL, PINNED_KEYS, parse_pinned, pinned_text
-from app.urlstate import (BETA_BOUNDS, F_N_BOUNDS, K_BOUNDS, MAX_PINNED_CHARS, RTOLS, parse,
-                          serialize, to_search)
+from app.defaults import BETA_BOUNDS, F_N_BOUNDS, K_BOUNDS, RTOLS
+from app.pinned_state import PINNED_ALL, PINNED_KEYS
+from app.urlstate import MAX_PINNED_CHARS, parse, parse_pinned, pinned_text, serialize, to_search
 
 PINNED = dict(k_r=0.5, k_theta=0.2, F_N=1.0, theta0=60.0, rtol=1e-6, beta_mode="self",
               beta=1.0)

@@ -22,12 +22,13 @@ from hypothesis import strategies as st
 
 from app import results as results_module
 from app import slot, worker
-from app.pinned_state import PINNED_ALL, complete, parse_pinned
+from app.pinned_state import PINNED_ALL, complete
 from app import histogram
 from app.state import ExplorerState, distribution_of
 from app.views.compare_tables import distribution_words
-from app.urlstate import (DEFAULTS, DESIGN_INPUTS, DIST_FAMILIES, KAPPA_BOUNDS,
-                          MAX_PINNED_CHARS, MIX_BOUNDS, PSI_BOUNDS, parse)
+from app.defaults import (DEFAULTS, DESIGN_INPUTS, DIST_FAMILIES, KAPPA_BOUNDS, MIX_BOUNDS,
+                          PSI_BOUNDS)
+from app.urlstate import MAX_PINNED_CHARS, parse, parse_pinned
 from fakes import InProcessPool
 from model import csvfile
 

@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 
 from app import worker
-from app.pinned_state import parse_pinned, pinned_text
 from app.state import ExplorerState
-from app.urlstate import DEFAULTS, LAW_INPUTS, parse
+from app.defaults import DEFAULTS, LAW_INPUTS
+from app.urlstate import parse, parse_pinned, pinned_text
 from app.views.page import Dashboard
 from model import FrictionLaw, Params
 from model.design_table import table_csv

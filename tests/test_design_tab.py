@@ -10,7 +10,8 @@ import math
 import pytest
 
 from app.state import ExplorerState
-from app.urlstate import DEFAULTS, DESIGN_INPUTS, parse
+from app.defaults import DEFAULTS, DESIGN_INPUTS
+from app.urlstate import parse
 from app.views.page import Dashboard
 from model import Params
 from model.distribution_array import distribution_array

@@ -28,9 +28,9 @@ def test_on_another_stack_the_server_says_so_in_one_line_and_installs_nothing(
     monkeypatch.setattr(edge, "versions", lambda: dict(edge.TESTED, panel="9.9.9"))
     installed = []
     for name in ("add_security_headers", "answer_busy_before_building"):
-        monkeypatch.setattr(edge, name, lambda name=name: installed.append(name))
+        monkeypatch.setattr(edge, name, lambda *args, name=name: installed.append(name))
     with caplog.at_level(logging.WARNING, logger="app.edge"):
-        assert edge.install() is False
+        assert edge.install("busy", lambda remote_ip: True) is False
     assert installed == []
     [record] = caplog.records
     assert "9.9.9" in record.message and "1.9.4" in record.message

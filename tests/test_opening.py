@@ -62,6 +62,7 @@ def wrapped_page_handler(monkeypatch):
 
     import app.pages
     from app.edge import answer_busy_before_building
+    from app.opening import BUSY_HTML
 
     built = []
 
@@ -70,7 +71,7 @@ def wrapped_page_handler(monkeypatch):
     monkeypatch.setattr(DocHandler, "get", get)
     gate = PageGate(max_unopened=1, window_s=60)
     monkeypatch.setattr(app.pages, "_GATE", gate)
-    answer_busy_before_building()
+    answer_busy_before_building(BUSY_HTML, lambda ip: app.pages.page_gate().has_room(ip))
     return DocHandler.get, gate, built
 
 

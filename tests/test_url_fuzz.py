@@ -18,9 +18,9 @@ from hypothesis import Phase, assume, given, settings
 from hypothesis import strategies as st
 
 from app.state import ExplorerState
-from app.urlstate import (AVERAGES, BETA_BOUNDS, DEFAULTS, F_N_BOUNDS, K_BOUNDS,
-                          MAP_QUANTITIES, MAX_VALUE_CHARS, ORIENTATIONS, RTOLS, TABS, URL_KEYS,
-                          parse, serialize)
+from app.defaults import (AVERAGES, BETA_BOUNDS, DEFAULTS, F_N_BOUNDS, K_BOUNDS, MAP_QUANTITIES,
+                          ORIENTATIONS, RTOLS, TABS)
+from app.urlstate import MAX_VALUE_CHARS, URL_KEYS, parse, serialize
 from model import REGIMES, Params
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -38,7 +38,7 @@ from model.params import REGIMES
 
 from ..figures.arrays import AVERAGE_COLUMNS
 from ..texts import AVERAGE_NAMES, FELT_AVERAGE, MECHANISMS
-from ..urlstate import TABS
+from ..defaults import TABS
 from ..worker import UNIFORM_TOL
 from . import figures as views
 

@@ -28,7 +28,7 @@ from ..figures.polar import set_extent
 from ..pinned_state import complete
 from ..results import SessionResults, optimum_family
 from ..state import ExplorerState, distribution_of
-from ..urlstate import DESIGN_INPUTS, LAW_INPUTS
+from ..defaults import DESIGN_INPUTS, LAW_INPUTS
 from .compare_tables import design_compare_markdown, distribution_words
 from .design_law import FrictionLawView
 from .design_readouts import DesignReadouts

@@ -24,7 +24,7 @@ from ..figures.law import law_data, law_figure, set_axes
 from ..results import SessionResults
 from ..state import ExplorerState
 from ..upload import upload_text
-from ..urlstate import DEFAULTS, DESIGN_INPUTS, LAW_INPUTS
+from ..defaults import DEFAULTS, DESIGN_INPUTS, LAW_INPUTS
 from .design_upload import plain
 from .layout import INPUT_CSS
 from .locked import locked

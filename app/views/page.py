@@ -22,7 +22,7 @@ from ..jobs import solver_ready
 from ..results import SessionResults
 from ..state import URL_KEYS, ExplorerState
 from ..texts import HELP
-from ..urlstate import TABS
+from ..defaults import TABS
 from .access import PageAccess
 from .array import ArrayView
 from .arrays import LoadView, RegimeMapView

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from app.urlstate import TABS
+from app.defaults import TABS
 
 from . import page_tools as pt
 from . import phone_tools as ph
