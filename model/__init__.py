@@ -9,6 +9,7 @@ the self-consistent contact count (Figs. 5, 6, 8). Conventions: docs/model.md.
     >>> res = simulate_support(REGIMES["pendulum"])
     >>> res.F_mean        # time-averaged friction / f_N (Eq. 8)
 """
+from ._version import __version__
 from .fixed import FixedArrayResult, OrientationSweep, fixed_orientation, orientation_sweep
 from .friction import mu, mu0, mu_over_s
 from .friction_compare import FrictionComparison, compare_friction
@@ -29,4 +30,3 @@ __all__ = ["Params", "REGIMES", "DEFAULTS", "SolverOptions", "METHODS", "simulat
            "fixed_orientation", "orientation_sweep", "uniform_array", "FixedArrayResult",
            "OrientationSweep", "UniformArrayResult", "regime_map", "load_sweep",
            "stiffness_sweep", "orientation_table", "SweepResult", "SweepCancelled"]
-__version__ = "0.1.0"

@@ -11,17 +11,13 @@ from pathlib import Path
 
 import numpy as np
 
+from ._version import __version__
+
 APP_NAME = "micropillar-friction"
 
 
 def package_version() -> str:
-    """The version of the ``model`` package (read lazily to avoid an import cycle)."""
-    try:
-        from . import __version__
-    except ImportError:  # called while ``model`` itself is still being imported
-        from importlib.metadata import version
-
-        return version(APP_NAME)
+    """The version of the ``model`` package."""
     return __version__
 
 

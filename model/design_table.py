@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import math
 
-from . import __version__, csvfile
+from . import csvfile
+from ._version import __version__
 from .design_point import PHYSICAL
 from .distribution_result import value_text
 from .units import measure_text

@@ -18,6 +18,7 @@ import numpy as np
 
 from .files import read_user_text
 from .histogram_csv import data_rows, number_cell
+from .si import ureg
 
 __all__ = ["FrictionCurve", "CurveFileError", "read_curve", "curve_from_text", "speed_factor",
            "N_COEFFICIENTS"]
@@ -86,8 +87,6 @@ def first_problem(v, mu, mu_err=None):
 def speed_factor(unit: str, where: str = "--v-unit") -> float:
     """Metres per second in one ``unit`` of speed (``"mm/s"``, ``"um/s"``, ``"m/s"``);
     ``CurveFileError`` naming ``where`` when it is not a speed."""
-    from .units import ureg
-
     try:
         q = ureg.Quantity(1.0, unit.strip())
         ok = q.check("[length] / [time]")

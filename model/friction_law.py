@@ -19,6 +19,7 @@ import numpy as np
 
 from .friction import law
 from .params import DEFAULTS, RANGES
+from .si import to_si, ureg
 from .validation import number
 
 __all__ = ["FrictionLaw", "COEFFICIENTS", "zeta"]
@@ -34,8 +35,6 @@ def zeta(V0: float, V_s: float | None) -> float:
 
 def _speed(value) -> float:
     """V_s in m/s from a number (m/s), text such as ``"1 mm/s"`` or a pint quantity."""
-    from .units import to_si
-
     if isinstance(value, (int, float)) and not isinstance(value, bool):
         value = f"{value!r} m/s"
     return to_si("V_s", value)
@@ -85,8 +84,6 @@ class FrictionLaw:
 
     def design_fields(self) -> dict:
         """The law as ``PillarDesign`` inputs (``design.replace(**law.design_fields())``)."""
-        from .units import ureg
-
         return {"mu_s": self.mu_s, "A": self.A, "B": self.B,
                 "V_s": None if self.V_s is None else ureg.Quantity(self.V_s, "m/s")}
 

@@ -27,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ._version import __version__
 from .controls import STIFFNESS_RANGE
 
 __all__ = ["RegimeMap", "load_regime_map", "compute_regime_map", "save_regime_map",
@@ -136,8 +137,6 @@ def compute_regime_map(n: int = 24, F_N: float = 1.0, tol: float = 1e-3, progres
 
 def _from_sweep(k, sweep) -> RegimeMap:
     """The ``SweepResult`` rows (k_r outer, k_theta inner) as (n, n) arrays."""
-    from . import __version__
-
     cols = sweep.columns
     grid2 = lambda name: np.asarray(cols[name]).reshape(k.size, k.size)  # noqa: E731
     if not (np.allclose(grid2("k_r")[:, 0], k) and np.allclose(grid2("k_theta")[0], k)):

@@ -19,6 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .si import to_si, ureg
+
 __all__ = ["SpeedPoint", "SpeedCurve", "friction_velocity", "speed_point", "parse_speeds",
            "speed_range", "check_own_V_s", "check_speeds"]
 
@@ -78,8 +80,6 @@ def speed_point(design, V0: float, distribution=None, psi: float = 0.0, beta="se
     or ``psi`` raises ``ValueError``. The app computes its curve point by point with this."""
     from .design_point import evaluate, model_params
     from .friction import mu0
-    from .units import ureg
-
     check_own_V_s(design)
     V0 = float(V0)
     flat = float(design.friction_law.mu(V0))
@@ -139,8 +139,6 @@ _RANGE = re.compile(r"^\s*(.+?)\s*\.\.\s*(.+?)\s*$")
 
 def parse_speeds(text: str) -> tuple[float, float]:
     """``"0.1mm/s..1m/s"`` as (low, high) in m/s; ``ValueError`` naming the text."""
-    from .units import to_si
-
     match = _RANGE.match(text or "")
     if not match:
         raise ValueError(f"speeds={text!r} is not a range; write it like '0.1mm/s..1m/s'")

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import csvfile
+from ._version import __version__
 from .cache import DiskCache, make_key
 from .controls import LOAD_RANGE, STIFFNESS_RANGE
 from .files import write_atomic
@@ -56,8 +57,6 @@ class SweepResult:
         """CSV with a header block of ``# key: value`` lines (kind, figure, version, settings,
         what each column holds), written atomically; ``read_csv`` reads it back (format:
         ``model.csvfile``)."""
-        from . import __version__
-
         header = {"kind": self.kind, "figure": KINDS.get(self.kind, ""), "version": __version__,
                   "points": len(self), "seconds": round(self.seconds, 3), **self.settings}
         def write(tmp):

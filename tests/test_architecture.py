@@ -85,7 +85,7 @@ def _module_graph(package: str) -> dict[str, set[str]]:
     return graph
 
 
-@pytest.mark.parametrize("package", ["app"])
+@pytest.mark.parametrize("package", ["app", "model"])
 def test_no_import_cycles(package):
     """Each module can be read after the modules it imports: no two import each other,
     directly or through others (``graphlib`` names the cycle)."""

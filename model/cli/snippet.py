@@ -140,7 +140,7 @@ def _sweep_output(out: str) -> str:
 
 
 def _snippet(command: str, call: _Call, args) -> str:
-    from .. import __version__
+    from .._version import __version__
 
     values = [*call.args, *call.kwargs.values()]
     imports = ["Params"] if any(isinstance(v, Params) for v in values) else []

@@ -97,7 +97,7 @@ def reproduce(out, resolution="full", workers: int = 1, progress=None,
     processes for the uniform-array sweeps. ``progress(stage, done, total)`` reports
     progress. ``draw``: see the module's docstring; without it, no pictures.
     """
-    from .. import __version__
+    from .._version import __version__
 
     start = time.perf_counter()
     res = _resolution(resolution)
