@@ -8,7 +8,7 @@
 FROM python:3.11.14-slim-bookworm
 
 # NUMBA_CACHE_DIR: numba's compile cache, filled at build time by `python -m model warmup`.
-# MICROPILLAR_CACHE_DIR: the model's on-disk result cache (model/cache.py).
+# MICROPILLAR_CACHE_DIR: the model's on-disk result cache (model/runs/cache.py).
 # BOKEH_RESOURCES=server: BokehJS and Panel's JS/CSS come from this server, never a CDN.
 # BOKEH_ALLOW_WS_ORIGIN: comma-separated host[:port] list of pages allowed to open the
 #   websocket, as the browser sees them (set it to the public host behind a proxy).

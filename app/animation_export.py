@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from model import Params, REGIMES, simulate_support
-from model.array_motion import ORIENTATIONS, array_motion
+from model.arrays.array_motion import ORIENTATIONS, array_motion
 
 from .figures.array_scene import SLAB_FILL, direction_palette, slab_half_width, view_x
 from .figures.common import BLUE, GREEN, GREY, VERMILION
@@ -100,7 +100,7 @@ def export_animation(what: str, fmt: str, path, params: Params, frames: int = 12
     """Write the animation of ``what`` (support or array) as ``fmt`` (gif or mp4) to ``path``.
 
     ``params``: the support (k_r, k_theta, F_N, theta0); ``orientation`` and
-    ``n_supports`` shape the array (see ``model.array_motion``).
+    ``n_supports`` shape the array (see ``model.arrays.array_motion``).
     """
     start = time.perf_counter()
     if not isinstance(params, Params):

@@ -10,9 +10,9 @@ comparison (``app.pinned_state``) read them from here.
 from __future__ import annotations
 
 from model.controls import CONTROLS
-from model.friction_law import COEFFICIENTS
-from model.quantities import AVERAGES as _AVERAGES, MAP_FIGURES
-from model.units import PillarDesign, quantity
+from model.lab.friction_law import COEFFICIENTS
+from model.arrays.quantities import AVERAGES as _AVERAGES, MAP_FIGURES
+from model.designs.units import PillarDesign, quantity
 
 K_BOUNDS = CONTROLS["k_r"].bounds
 F_N_BOUNDS = CONTROLS["F_N"].bounds
@@ -54,7 +54,7 @@ def _example_text(field: str) -> str:
 
 
 #: Design inputs: state parameter -> (URL key, ``PillarDesign`` field, label, what it is).
-#: The text of each is a quantity with its unit, parsed by ``model.units`` (pint).
+#: The text of each is a quantity with its unit, parsed by ``model.designs.units`` (pint).
 DESIGN_INPUTS = {
     "design_D": ("d_D", "D", "D", "pillar diameter D"),
     "design_h": ("d_h", "h", "h", "pillar height h"),

@@ -16,7 +16,7 @@ import math
 import numpy as np
 
 from model import __version__, csvfile
-from model.quantities import TABLES, value_of
+from model.arrays.quantities import TABLES, value_of
 
 TRAJECTORY_COLUMNS = TABLES["trajectory"]
 
@@ -108,7 +108,7 @@ def _not_yet(what: str) -> str:
 
 
 def map_csv(regime_map) -> str:
-    """The regime map on show (Fig. 5, a ``model.shipped_map.RegimeMap``): one row per
+    """The regime map on show (Fig. 5, a ``model.runs.shipped_map.RegimeMap``): one row per
     (k_r, k_theta) cell, k_r outer; its metadata (load, beta, tolerance, grid) in the header."""
     if regime_map is None:
         return _not_yet("regime map")
@@ -139,7 +139,7 @@ def load_csv(curves: dict | None) -> str:
     return csvfile.text(columns, header)
 
 
-#: The Array tab's per-frame columns (``model.array_motion.ArrayMotion``).
+#: The Array tab's per-frame columns (``model.arrays.array_motion.ArrayMotion``).
 ARRAY_FRAME_COLUMNS = ("t", "slab_lead", "N_c", "N_c0", "FTx", "FTx_running")
 
 

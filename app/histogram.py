@@ -2,7 +2,7 @@
 state, and its text in a shared link.
 
 ``read_upload`` reads the bytes of a CSV file in the form the command line and
-``model.distributions.Histogram.from_csv`` accept (``model.histogram_csv``: a header
+``model.designs.distributions.Histogram.from_csv`` accept (``model.designs.histogram_csv``: a header
 ``theta0_deg,weight`` or ``lower_deg,upper_deg,weight``, one row per bin), refusing an
 empty, oversized, undecodable, non-numeric or negative-weight file with a ``ValueError``
 that names the problem. It returns the state's form ``{"edges_deg": [...], "weights": [...]}``
@@ -22,7 +22,7 @@ import math
 
 import numpy as np
 
-from model.distributions import Histogram
+from model.designs.distributions import Histogram
 
 from .upload import upload_text
 

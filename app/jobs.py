@@ -138,7 +138,7 @@ class WorkPool:
     def recycle_workers(self) -> bool:
         """Replace every started lane's worker processes by fresh ones, if the pool is
         idle (else nothing; False). A worker keeps what a class's work left in its heap
-        and the model's caches (``model.support``, ``model.uniform``: tens of MB after a
+        and the model's caches (``model.contact.support``, ``model.arrays.uniform``: tens of MB after a
         class of thirty); fresh workers load the compiled kernel from numba's cache and
         are as small as at the server's start. The old ones finish and exit; the new
         ones start at once, so the next page does not wait for them."""

@@ -14,8 +14,8 @@ import math
 
 import param
 
-from model.friction_fit import fit_friction
-from model.friction_law import COEFFICIENTS
+from model.lab.friction_fit import fit_friction
+from model.lab.friction_law import COEFFICIENTS
 
 #: Relative difference below which the law in use counts as the fit (the inputs keep 6
 #: significant digits).

@@ -49,7 +49,7 @@ def _deg(radians) -> float:
 
 def array_description(motion, orientation: str) -> str:
     """The Array tab's top view and live counts for ``motion`` (a
-    ``model.array_motion.ArrayMotion``): the grid, the orientations and where the force
+    ``model.arrays.array_motion.ArrayMotion``): the grid, the orientations and where the force
     on the slab settles (the array model's duration-weighted F_T,x/(mu0 F_N), Eq. 10)."""
     if motion is None:
         return "The array's plots are being computed."

@@ -49,8 +49,8 @@ except ImportError as error:  # pragma: no cover - the extra is installed in the
 
 from model import (FrictionComparison, FrictionCurve, FrictionFit, FrictionLaw,
                    OrientationSweep, SweepResult, UniformArrayResult)
-from model.quantities import label
-from model.speed_curve import SpeedCurve
+from model.arrays.quantities import label
+from model.lab.speed_curve import SpeedCurve
 
 __all__ = ["plot", "SPEED", "MU", "THETA0"]
 

@@ -5,7 +5,7 @@ The snippet makes the calls the server's workers make (``app.worker``): the
 fixed-orientation array at theta0 and the contact of its support, integrated with the
 array's load factor (Support tab, Fig. 7), and the uniform-orientation array behind the
 readouts (Figs. 5, 6, 8); on the Design tab also the design's array for its orientation
-distribution, in physical units (``model.design_point.evaluate``). Settings the page fixes
+distribution, in physical units (``model.designs.design_point.evaluate``). Settings the page fixes
 (samples, step budget, quadrature tolerances) are taken from ``app.worker``, so the snippet
 follows them. With a pinned state A of a comparison (``app.compare``) the snippet computes
 A's numbers as well (its variables end in ``_A``) and prints B − A.
@@ -17,8 +17,8 @@ import textwrap
 
 from model import __version__
 from model.cli.snippet import params_source, source
-from model.friction_law import COEFFICIENTS
-from model.units import to_si
+from model.lab.friction_law import COEFFICIENTS
+from model.designs.units import to_si
 
 from . import worker
 from .pinned_state import complete
@@ -140,9 +140,9 @@ import math
     imports = "from model import Params, fixed_orientation, simulate_support, uniform_array"
     if design:
         imports = imports.replace("from model import ", "from model import FrictionLaw, ")
-        imports += ("\nfrom model.design_point import evaluate\n"
-                    "from model.distributions import from_dict\n"
-                    "from model.units import PillarDesign")
+        imports += ("\nfrom model.designs.design_point import evaluate\n"
+                    "from model.designs.distributions import from_dict\n"
+                    "from model.designs.units import PillarDesign")
     body = _support_block(state, "", who) + (_design_block(state, "", who) if design else "")
     if pinned is not None:
         a = ExplorerState(**complete(pinned), average=state.average)

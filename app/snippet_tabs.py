@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 
 from model.cli.snippet import params_source, source
-from model.regimes import EXPLORED_MAP
+from model.contact.regimes import EXPLORED_MAP
 
 from . import worker
 from .figures.arrays import AVERAGE_COLUMNS, map_column, map_title
@@ -22,9 +22,9 @@ from .texts import AVERAGE_NAMES, FELT_AVERAGE
 IMPORTS = {
     "polar": "import numpy as np\nfrom model import Params, orientation_table",
     "map": ("import numpy as np\nfrom model import regime_map\n"
-            "from model.shipped_map import load_regime_map"),
+            "from model.runs.shipped_map import load_regime_map"),
     "load": "import numpy as np\nfrom model import REGIMES, Params, uniform_array",
-    "array": "from model import Params\nfrom model.array_motion import array_motion",
+    "array": "from model import Params\nfrom model.arrays.array_motion import array_motion",
 }
 
 

@@ -1,7 +1,7 @@
 """The Design tab's friction against sliding speed: the structured surface's F_T,x/F_N at
-each speed of a range (``model.speed_curve``) beside the flat material's mu(V0) of Eq. (4),
+each speed of a range (``model.lab.speed_curve``) beside the flat material's mu(V0) of Eq. (4),
 and its comparison with the structured sample's measured curve
-(``model.friction_compare.compare_friction``).
+(``model.lab.friction_compare.compare_friction``).
 
 Controls (``ExplorerState.speeds_range``, ``speeds_n``, ``structured_curve`` and the
 design's inputs) -> ``SpeedResults`` -> the views. ``predict_speeds`` hands each speed to
@@ -23,8 +23,8 @@ import numpy as np
 import panel as pn
 import param
 
-from model.friction_compare import compare_friction
-from model.speed_curve import SpeedCurve, SpeedPoint, check_own_V_s, parse_speeds, speed_range
+from model.lab.friction_compare import compare_friction
+from model.lab.speed_curve import SpeedCurve, SpeedPoint, check_own_V_s, parse_speeds, speed_range
 
 from . import worker
 from .jobs import work_pool
@@ -44,7 +44,7 @@ class SpeedResults(param.Parameterized):
     ``app.results.SessionResults``, which gives ``state``, ``session_id`` and ``client``."""
 
     speed_points = param.List([], doc=(
-        "Design tab: one model.speed_curve.SpeedPoint per speed in increasing speed, None "
+        "Design tab: one model.lab.speed_curve.SpeedPoint per speed in increasing speed, None "
         "where it has not arrived"))
     speed_running = param.Boolean(False, doc="whether the curve's speeds are being computed")
     speed_note = param.String("", doc="what the curve's computation is doing, or did")

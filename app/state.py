@@ -15,7 +15,7 @@ import param
 
 from model import REGIMES, FrictionLaw, Params
 from model.controls import OBJECTIVES
-from model.units import to_si, ureg
+from model.designs.units import to_si, ureg
 
 from .pinned_state import PINNED_ALL, PINNED_DIST_KEYS, PINNED_KEYS, complete
 from .defaults import (AVERAGES, BETA_BOUNDS, BOUND_BOUNDS, DEFAULTS, DESIGN_INPUTS,
@@ -65,7 +65,7 @@ def clamp(value: float, bounds: tuple[float, float]) -> float:
 
 
 def _component(family: str, deg: float, kappa: float, hist: dict | None = None) -> dict:
-    """One component of the editor as ``model.distributions.from_dict`` reads it (the
+    """One component of the editor as ``model.designs.distributions.from_dict`` reads it (the
     histogram family without an uploaded histogram is uniform)."""
     if family == "histogram" and hist:
         return {"family": "histogram", **hist}
@@ -91,7 +91,7 @@ def _editor_values(d: dict, which: str) -> dict:
 
 def distribution_of(values) -> dict:
     """The orientation distribution of the Design tab's ``values`` (a mapping holding
-    ``DIST_KEYS``: the state's, or a pinned state's), as ``model.distributions.from_dict``
+    ``DIST_KEYS``: the state's, or a pinned state's), as ``model.designs.distributions.from_dict``
     reads it (angles in degrees; psi is separate): one component, or with ``mix_weight``
     > 0 the mixture of two weighted components."""
     hist = values.get("dist_hist")
@@ -145,7 +145,7 @@ class ExplorerState(param.Parameterized):
         " the support's inputs and the Design tab's), or None"))
 
     # ------------------------------------------------------------------ Design tab
-    # A pillar array in physical units (text with units, parsed by model.units): set below
+    # A pillar array in physical units (text with units, parsed by model.designs.units): set below
     # from ``DESIGN_INPUTS``, one String parameter per input.
     dist_family = param.Selector(default=DEFAULTS["dist_family"], objects=list(DIST_FAMILIES),
                                  doc="Design tab: the family of the orientation distribution")
@@ -180,7 +180,7 @@ class ExplorerState(param.Parameterized):
         "m/s) that the friction law is fitted to; None: none uploaded. Not in the URL."))
     speeds_range = param.String(SPEEDS_RANGE, doc=(
         "Design tab: the sliding speeds of the structured surface's friction-velocity "
-        "curve, 'LO..HI' with units (model.speed_curve.parse_speeds). Not in the URL."))
+        "curve, 'LO..HI' with units (model.lab.speed_curve.parse_speeds). Not in the URL."))
     speeds_n = param.Integer(SPEEDS_N, bounds=(2, MAX_SPEEDS), doc=(
         "Design tab: how many speeds, evenly spaced in log. Not in the URL."))
     structured_curve = param.Parameter(None, doc=(

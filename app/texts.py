@@ -1,9 +1,9 @@
 """Words on the page: the regimes' mechanisms (Figs. 5-7), the model's equations
-(Eqs. 3-6, 8-13, as LaTeX; the constants quoted from ``model.params.DEFAULTS``) and short
-help. Labels of quantities come from ``model.quantities.label``."""
+(Eqs. 3-6, 8-13, as LaTeX; the constants quoted from ``model.contact.params.DEFAULTS``) and short
+help. Labels of quantities come from ``model.arrays.quantities.label``."""
 from __future__ import annotations
 
-from model.params import DEFAULTS as _D
+from model.contact.params import DEFAULTS as _D
 
 _LAW = (f"μ_s = {_D['mu_s']:g}, A = {_D['A']:g}, B = {_D['B']:g}".replace("-", "−")
         + f", ζ = {_D['zeta']:g}")

@@ -27,7 +27,7 @@ URL keys (values in the units of the controls):
 ``d_<input>``  Design tab: a pillar-array input with its unit (``d_D=5 um``, ``d_V0=1 m/s``;
                see ``DESIGN_INPUTS``); ``d_G`` empty means G from Poisson's ratio ``d_nu``;
                the friction law of Eq. (4) is ``d_Vs`` (with its unit), ``d_mus``, ``d_A``
-               and ``d_B`` (within ``model.params.RANGES``)
+               and ``d_B`` (within ``model.contact.params.RANGES``)
 ``dist``       Design tab: ``fixed``, ``pair``, ``vonmises``, ``uniform`` or ``histogram``
 ``hist``       Design tab: an uploaded histogram of <= 40 equal bins (``app.histogram``)
 ``dist_deg``   Design tab: theta0 (fixed, pair) or the mean (von Mises) in degrees, [0, 360)
@@ -52,9 +52,9 @@ from urllib.parse import parse_qs, unquote, urlencode
 
 from model import REGIMES
 from model.controls import CONTROLS, OBJECTIVES
-from model.friction_law import COEFFICIENTS, FrictionLaw
-from model.params import RANGES
-from model.units import quantity, to_si
+from model.lab.friction_law import COEFFICIENTS, FrictionLaw
+from model.contact.params import RANGES
+from model.designs.units import quantity, to_si
 
 from .defaults import (AVERAGES, BETA_BOUNDS, BOUND_BOUNDS, DEFAULTS, DESIGN_DEFAULTS,
                        DESIGN_INPUTS, DIST_DEG, DIST_FAMILIES, F_N_BOUNDS, K_BOUNDS,
@@ -150,7 +150,7 @@ def _design_text(field):
             return None
         try:
             quantity(field, text)
-            if field in COEFFICIENTS:  # within the law's bounds (``model.params.RANGES``)
+            if field in COEFFICIENTS:  # within the law's bounds (``model.contact.params.RANGES``)
                 FrictionLaw(**{field: to_si(field, text)})
         except ValueError:
             return None

@@ -23,10 +23,10 @@ import numpy as np
 
 from model import (REGIMES, FixedArrayResult, Params, SupportResult, fixed_orientation,
                    simulate_support)
-from model import shipped_map
-from model.regimes import map_axis
-from model.shipped_map import load_regime_map
-from model.sweeps import orientation_table, regime_map
+from model.runs import shipped_map
+from model.contact.regimes import map_axis
+from model.runs.shipped_map import load_regime_map
+from model.runs.sweeps import orientation_table, regime_map
 
 SAMPLES = 400
 POLAR_N = 72
@@ -155,7 +155,7 @@ def shipped_load(F_N: float) -> float | None:
 def compute_map(F_N: float, beta="self", n: int = MAP_FINE_N):
     """The regime map (Fig. 5) at ``F_N``: the shipped one when there is one (self-consistent
     beta), else uniform arrays on an ``n`` x ``n`` log grid (through the disk cache)."""
-    from model.shipped_map import RegimeMap
+    from model.runs.shipped_map import RegimeMap
     load = shipped_load(F_N)
     if load is not None and beta == "self":
         try:
@@ -193,8 +193,8 @@ def array_params(state) -> Params:
 
 def compute_array_motion(params: Params, orientation: str = "uniform"):
     """The array under the slab (Figs. 2a, 4): ~100 supports' trajectories on
-    ``ARRAY_FRAMES`` frames (``model.array_motion``), computed once per parameter set."""
-    from model.array_motion import array_motion
+    ``ARRAY_FRAMES`` frames (``model.arrays.array_motion``), computed once per parameter set."""
+    from model.arrays.array_motion import array_motion
     return array_motion(params, orientation=orientation, n_frames=ARRAY_FRAMES)
 
 
@@ -215,25 +215,25 @@ def compute_animation(what: str, fmt: str, params: Params, orientation: str = "u
 
 # ---------------------------------------------------------------------- Design tab
 def design_of(inputs: dict):
-    """The ``model.units.PillarDesign`` of the Design tab's texts; ``ValueError`` naming
+    """The ``model.designs.units.PillarDesign`` of the Design tab's texts; ``ValueError`` naming
     the input that is not a usable quantity."""
-    from model.units import PillarDesign
+    from model.designs.units import PillarDesign
     return PillarDesign(**inputs)
 
 
 def design_model_params(design) -> Params:
     """The ``Params`` the model computes for ``design`` (its point, scaled into the model
-    range when it lies beyond it: ``model.design_point.model_params``); ``ValueError`` if it cannot."""
-    from model.design_point import model_params
+    range when it lies beyond it: ``model.designs.design_point.model_params``); ``ValueError`` if it cannot."""
+    from model.designs.design_point import model_params
     return model_params(design)
 
 
 def compute_design_point(design) -> dict:
     """Where ``design`` sits: its dimensionless point (k~_r, k~_theta, F~_N, zeta, L0), the
-    point the model computes, the status (``model.design_point.POINT_STATUS``) and its message,
+    point the model computes, the status (``model.designs.design_point.POINT_STATUS``) and its message,
     the regime, the speeds and heights of each regime, and the speed line (plain data).
     A design the model cannot compute keeps its point, with ``error`` saying why."""
-    from model.design_point import model_point, regime_intervals, speed_line
+    from model.designs.design_point import model_point, regime_intervals, speed_line
     d = design.dimensionless()
     try:
         computed, status, message = model_point(design)
@@ -253,15 +253,15 @@ DESIGN_TOL, DESIGN_REFINE_S = 1e-3, 20.0
 def compute_design_array(design, distribution: dict, psi_deg: float = 0.0,
                          beta="self") -> dict:
     """The array of ``design`` with orientations ``distribution`` (a ``to_dict`` form) seen
-    at ``psi_deg``: ``model.design_point.evaluate`` as plain data (dimensionless and physical)."""
-    from model.distributions import from_dict
-    from model.design_point import evaluate
+    at ``psi_deg``: ``model.designs.design_point.evaluate`` as plain data (dimensionless and physical)."""
+    from model.designs.distributions import from_dict
+    from model.designs.design_point import evaluate
     result = evaluate(design, from_dict(distribution), psi=math.radians(psi_deg), beta=beta,
                       tol=DESIGN_TOL, budget=DESIGN_REFINE_S)
     return result.to_dict()
 
 
-#: Seconds of one speed of the Design tab's friction-velocity curve (``model.speed_curve``):
+#: Seconds of one speed of the Design tab's friction-velocity curve (``model.lab.speed_curve``):
 #: its quadrature stops refining there and the point says the budget ran out.
 SPEED_POINT_S = 10.0
 
@@ -269,9 +269,9 @@ SPEED_POINT_S = 10.0
 def compute_speed_point(design, V0: float, distribution: dict, psi_deg: float = 0.0,
                         beta="self"):
     """``design`` at the sliding speed ``V0`` (m/s) with orientations ``distribution`` (a
-    ``to_dict`` form): ``model.speed_curve.speed_point`` (a ``SpeedPoint``)."""
-    from model.distributions import from_dict
-    from model.speed_curve import speed_point
+    ``to_dict`` form): ``model.lab.speed_curve.speed_point`` (a ``SpeedPoint``)."""
+    from model.designs.distributions import from_dict
+    from model.lab.speed_curve import speed_point
     return speed_point(design, V0, from_dict(distribution), psi=math.radians(psi_deg),
                        beta=beta, tol=DESIGN_TOL, budget=SPEED_POINT_S)
 
@@ -282,9 +282,9 @@ OPTIMUM_EVALUATIONS = 60
 
 def compute_design_optimum(params: Params, family: str, beta="self", objective="min-FTx",
                            bound=None) -> dict:
-    """``model.design.optimise`` of ``objective`` under ``bound`` over ``family`` for the
+    """``model.designs.design.optimise`` of ``objective`` under ``bound`` over ``family`` for the
     springs and load of ``params``: the optimum's ``to_dict`` (distribution, value, gain
     over uniform)."""
-    from model.design import optimise
+    from model.designs.design import optimise
     return optimise(params, family=family, objective=objective, bound=bound, beta=beta,
                     tol=DESIGN_TOL, max_evaluations=OPTIMUM_EVALUATIONS).to_dict()

@@ -29,8 +29,8 @@ import numpy as np
 
 from model import REGIMES, fixed_orientation, orientation_sweep, simulate_support, uniform_array
 from model._kernel import warmup
-from model.support import _simulate
-from model.uniform import _uniform
+from model.contact.support import _simulate
+from model.arrays.uniform import _uniform
 
 from spread import cell, cold_runs
 
@@ -159,7 +159,7 @@ def memory(quick: bool) -> dict:
     return peak_rss_mb({
         "uniform array (slider, self-consistent beta)":
             "from model import REGIMES, uniform_array; uniform_array(REGIMES['slider'])",
-        f"regime map {n}x{n} (1 process)": f"from model.sweeps import regime_map; regime_map(n={n})",
+        f"regime map {n}x{n} (1 process)": f"from model.runs.sweeps import regime_map; regime_map(n={n})",
         "import only (baseline)": "import model",
     })
 

@@ -1,4 +1,4 @@
-"""The disk cache's cost per write in a full folder (model/cache.py).
+"""The disk cache's cost per write in a full folder (model/runs/cache.py).
 
     python benchmarks/bench_cache.py [--entries 10000] [--writes 200]
 
@@ -20,7 +20,7 @@ import numpy as np
 
 
 from spread import cell, spread
-from model.cache import DiskCache
+from model.runs.cache import DiskCache
 
 
 def main(argv=None) -> int:

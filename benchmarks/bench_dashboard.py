@@ -35,9 +35,9 @@ import numpy as np
 from app.worker import POLAR_THETA0
 from app.worker import compute_support
 from model import Params
-from model.support import _simulate
-from model.sweeps import orientation_table
-from model.uniform import _uniform
+from model.contact.support import _simulate
+from model.runs.sweeps import orientation_table
+from model.arrays.uniform import _uniform
 
 
 def percentiles(samples) -> dict:

@@ -30,16 +30,16 @@ from pathlib import Path
 import numpy as np
 
 from model import REGIMES, Params, orientation_sweep
-from model import design as design_module
+from model.designs import design as design_module
 from model._kernel import warmup
-from model.beta import solve_beta_scalar
-from model.contacts import run_contacts
-from model.design import optimise
-from model.distribution_array import _cached_array, distribution_array
-from model.distributions import Uniform, VonMises
-from model.friction import mu0
-from model.options import SolverOptions
-from model.support import _simulate
+from model.arrays.beta import solve_beta_scalar
+from model.arrays.contacts import run_contacts
+from model.designs.design import optimise
+from model.designs.distribution_array import _cached_array, distribution_array
+from model.designs.distributions import Uniform, VonMises
+from model.contact.friction import mu0
+from model.contact.options import SolverOptions
+from model.contact.support import _simulate
 
 from spread import cell, cold_runs
 
@@ -135,9 +135,9 @@ def bench_tab():
     """The Design tab's uniform array at each of ``TAB_SPEEDS`` (its tol and budget), and
     the step cost of the 60 members of its first partition at beta = 1."""
     from app.worker import DESIGN_REFINE_S, DESIGN_TOL
-    from model.design_point import evaluate, model_params
-    from model.distribution_nodes import initial_edges, nodes
-    from model.units import PillarDesign
+    from model.designs.design_point import evaluate, model_params
+    from model.designs.distribution_nodes import initial_edges, nodes
+    from model.designs.units import PillarDesign
 
     rows = []
     for speed in TAB_SPEEDS:

@@ -8,7 +8,7 @@
   against the best honest alternative, ``scipy.optimize.curve_fit`` with the same bounds
   from the same first guess (the best of fit_friction's starts; finite-difference Jacobian,
   covariance only, no warnings). Median [min-max] over repeats, and each one's distance to the true coefficients.
-* A 30-speed friction-velocity curve (``model.speed_curve``) of a von Mises array (mean
+* A 30-speed friction-velocity curve (``model.lab.speed_curve``) of a von Mises array (mean
   60 deg, kappa 4) for soft pillars at 0.1-1 m/s, each run with the model's caches
   cleared: on two processes (``workers=2``, the command line's default: the speeds are
   independent, the slowest handed out first) against the best honest alternative, one
@@ -36,11 +36,11 @@ import numpy as np
 from scipy.optimize import curve_fit
 
 from model import FrictionCurve, FrictionLaw, fit_friction
-from model.distributions import VonMises
-from model.friction import law
-from model.friction_fit import _bounds, _starts
-from model.speed_curve import friction_velocity, speed_range
-from model.units import PillarDesign
+from model.designs.distributions import VonMises
+from model.contact.friction import law
+from model.lab.friction_fit import _bounds, _starts
+from model.lab.speed_curve import friction_velocity, speed_range
+from model.designs.units import PillarDesign
 
 from spread import cell, cold_runs, spread
 
@@ -102,8 +102,8 @@ def bench_fit(repeats: int) -> dict:
 def bench_speeds(n: int, repeats: int) -> dict:
     """``repeats`` runs of an ``n``-speed curve on 2 processes and on 1, and of its slowest
     speed alone, each with the model's caches cleared."""
-    from model.distribution_array import _cached_array
-    from model.support import _simulate
+    from model.designs.distribution_array import _cached_array
+    from model.contact.support import _simulate
 
     design = PillarDesign.example(E="1 MPa", V0="1 m/s", V_s="1 mm/s", L_x="0.1 mm",
                                   F_N="10 uN")

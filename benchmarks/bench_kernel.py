@@ -26,7 +26,7 @@ import numpy as np
 
 from model import REGIMES, Params, simulate_support
 from model import _kernel
-from model.fixed import orientation_sweep
+from model.arrays.fixed import orientation_sweep
 
 from spread import cell, spread
 

@@ -27,8 +27,8 @@ from pathlib import Path
 import numpy as np
 
 from model._kernel import warmup
-from model.sweeps import regime_map
-from model.uniform import _uniform
+from model.runs.sweeps import regime_map
+from model.arrays.uniform import _uniform
 
 
 def _cpu() -> float:

@@ -5,7 +5,7 @@ Two right-hand sides of the same model, Eqs. (3)-(6), both with the exit event o
 * ``lean`` (methods named ``"RK45-lean"``, ...): what a researcher would write: the five
   motion states as scalars with ``math`` functions and the six quadratures as extra
   states, returning a list (no numpy arrays inside the right-hand side);
-* the 11-state numpy form of ``model.reference`` (methods ``"RK45"``, ...), about four
+* the 11-state numpy form of ``model.contact.reference`` (methods ``"RK45"``, ...), about four
   times slower per call, kept for comparison with earlier reports.
 """
 from __future__ import annotations
@@ -17,9 +17,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from model import Params, SolverOptions
-from model.energy import elastic_energy, kinetic_energy
-from model.friction import SERIES_BELOW, series_coefficients
-from model.reference import reference_rhs
+from model.contact.energy import elastic_energy, kinetic_energy
+from model.contact.friction import SERIES_BELOW, series_coefficients
+from model.contact.reference import reference_rhs
 
 from spread import repeats_for, spread
 
@@ -73,7 +73,7 @@ def lean_rhs(params: Params):
 
 def solve_scipy(params: Params, method: str, rtol: float, limit: float):
     """solve_ivp with the exit event of Eq. (9); ``"<method>-lean"`` uses ``lean_rhs``,
-    a plain method name the 11-state numpy right-hand side of ``model.reference``."""
+    a plain method name the 11-state numpy right-hand side of ``model.contact.reference``."""
     lean = method.endswith("-lean")
     method = method.removesuffix("-lean")
     fun = lean_rhs(params) if lean else reference_rhs(params)

@@ -10,18 +10,18 @@ the self-consistent contact count (Figs. 5, 6, 8). Conventions: docs/model.md.
     >>> res.F_mean        # time-averaged friction / f_N (Eq. 8)
 """
 from ._version import __version__
-from .fixed import FixedArrayResult, OrientationSweep, fixed_orientation, orientation_sweep
-from .friction import mu, mu0, mu_over_s
-from .friction_compare import FrictionComparison, compare_friction
-from .friction_curve import FrictionCurve, read_curve
-from .friction_fit import FrictionFit, fit_friction
-from .friction_law import FrictionLaw
-from .options import METHODS, SolverOptions
-from .params import DEFAULTS, REGIMES, Params
-from .results import IntegrationError, SupportResult, TimeSeries
-from .support import simulate_support
-from .sweeps import SweepCancelled, SweepResult, load_sweep, orientation_table, regime_map, stiffness_sweep
-from .uniform import UniformArrayResult, uniform_array
+from .arrays.fixed import FixedArrayResult, OrientationSweep, fixed_orientation, orientation_sweep
+from .arrays.uniform import UniformArrayResult, uniform_array
+from .contact.friction import mu, mu0, mu_over_s
+from .contact.options import METHODS, SolverOptions
+from .contact.params import DEFAULTS, REGIMES, Params
+from .contact.results import IntegrationError, SupportResult, TimeSeries
+from .contact.support import simulate_support
+from .lab.friction_compare import FrictionComparison, compare_friction
+from .lab.friction_curve import FrictionCurve, read_curve
+from .lab.friction_fit import FrictionFit, fit_friction
+from .lab.friction_law import FrictionLaw
+from .runs.sweeps import SweepCancelled, SweepResult, load_sweep, orientation_table, regime_map, stiffness_sweep
 
 __all__ = ["Params", "REGIMES", "DEFAULTS", "SolverOptions", "METHODS", "simulate_support",
            "SupportResult", "TimeSeries", "IntegrationError", "mu", "mu0", "mu_over_s",

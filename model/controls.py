@@ -3,7 +3,7 @@
 The ranges are those the paper's figures span: stiffnesses k_r, k_theta on
 [0.01, 3] (Figs. 5, 8), loads F_N on [0.1, 10] (Fig. 6). The dashboard's sliders and
 its URL parser read them from here, and so do the sweeps' default axes; what the model
-accepts at all is wider (``model.params.RANGES``).
+accepts at all is wider (``model.contact.params.RANGES``).
 
 The default view is the pendulum support of Fig. 7a: its springs (``REGIMES``), and the
 load, orientation and tolerance that ``Params`` and ``SolverOptions`` default to.
@@ -13,8 +13,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .options import RTOL_CHOICES, SolverOptions
-from .params import REGIMES, Params
+from .contact.options import RTOL_CHOICES, SolverOptions
+from .contact.params import REGIMES, Params
 from .validation import BETA, Interval
 
 __all__ = ["Control", "CONTROLS", "DEFAULT_REGIME", "STIFFNESS_RANGE", "LOAD_RANGE",
@@ -26,7 +26,7 @@ STIFFNESS_RANGE = Interval(0.01, 3.0)
 #: The loads of Fig. 6 (sampled logarithmically).
 LOAD_RANGE = Interval(0.1, 10.0)
 DEFAULT_REGIME = "pendulum"
-#: What ``model.design.optimise`` seeks: the least F_T,x/(mu0 F_N) (under a bound on
+#: What ``model.designs.design.optimise`` seeks: the least F_T,x/(mu0 F_N) (under a bound on
 #: |F_T,y|/(mu0 F_N)), or the largest |F_T,y|/(mu0 F_N) (under a bound on F_T,x/(mu0 F_N)).
 OBJECTIVES = ("min-FTx", "max-FTy")
 #: The bound of the objective, a force over mu0 F_N: 0 (none sideways) up to 2 (above any
@@ -34,7 +34,7 @@ OBJECTIVES = ("min-FTx", "max-FTy")
 BOUND_RANGE = Interval(0.0, 2.0)
 #: The weight of a mixture's second component (0: no mixture, 1: the second alone).
 MIX_WEIGHT = Interval(0.0, 1.0)
-#: The orientation distributions a design edits (``model.distributions.FAMILIES``' names;
+#: The orientation distributions a design edits (``model.designs.distributions.FAMILIES``' names;
 #: a mixture is two of them, made with the mixture weight).
 DIST_FAMILIES = ("fixed", "pair", "vonmises", "uniform", "histogram")
 #: The von Mises concentration a design edits: 0 (uniform) up to 1e4 (a spread of ~0.6 deg,

@@ -3,7 +3,7 @@
 A file starts with ``# key: value`` lines (what was computed, the package version, the
 settings; strings as they are, everything else as JSON), then one line per registered
 column saying what it holds (``# column k_r: k_r: radial stiffness (Eq. (5))``, from
-``model.quantities``), then a header row and the data. Floats are written in their
+``model.arrays.quantities``), then a header row and the data. Floats are written in their
 shortest round-trip form, so reading a file back gives the same numbers.
 ``numpy.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8",
 skip_header=<number of # lines>)`` reads the table too.
@@ -16,7 +16,7 @@ import json
 
 import numpy as np
 
-from .quantities import QUANTITIES, column_notes
+from .arrays.quantities import QUANTITIES, column_notes
 
 __all__ = ["write", "text", "read", "read_text", "cell"]
 

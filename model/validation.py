@@ -8,8 +8,8 @@ what the value must be, so the fix is in the message::
     n=0 must be a whole number >= 1
 
 Params, SolverOptions, the array functions, the sweeps and the CLI use these; the
-intervals themselves live beside what they bound (``model.params.RANGES``,
-``model.options``, ``model.controls``).
+intervals themselves live beside what they bound (``model.contact.params.RANGES``,
+``model.contact.options``, ``model.controls``).
 """
 from __future__ import annotations
 
@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .beta import BETA_MIN
+from .arrays.beta import BETA_MIN
 
 __all__ = ["Interval", "number", "whole", "choice", "load_factor", "angles", "grid",
            "instance"]
@@ -96,7 +96,7 @@ def choice(name: str, value, options) -> str:
 #: (docs/model.md, "Contact count and the load factor β"). Its lower end BETA_MIN = 1e-3
 #: is a contact lasting a thousand slab lengths, N_c = 1000 N_c0 supports sharing the
 #: load; the self-consistent solver brackets its root in the same [BETA_MIN, 1]
-#: (model/beta.py), so a fixed beta has the range a solved one has. Below it the page showed energies of 1e285 W.
+#: (model/arrays/beta.py), so a fixed beta has the range a solved one has. Below it the page showed energies of 1e285 W.
 BETA = Interval(BETA_MIN, 1.0)
 
 

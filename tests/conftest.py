@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from model.params import REGIMES
+from model.contact.params import REGIMES
 
 
 @pytest.fixture(params=list(REGIMES.values()), ids=list(REGIMES))

@@ -1,4 +1,4 @@
-"""The array under the slab in motion (model.array_motion): the live count and force
+"""The array under the slab in motion (model.arrays.array_motion): the live count and force
 agree with the array functions' readouts, contacts follow Eq. (9), mirror symmetry."""
 import math
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from model import REGIMES, simulate_support
-from model.array_motion import array_motion
+from model.arrays.array_motion import array_motion
 
 SEEDS = range(6)
 

@@ -7,7 +7,7 @@ import pytest
 from app.figures.array_scene import _readout
 from app.figures.array_readout import last_counted, settled_mean
 from model import REGIMES
-from model.array_motion import array_motion
+from model.arrays.array_motion import array_motion
 
 
 @pytest.fixture(scope="module")

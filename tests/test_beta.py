@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 from model import REGIMES, fixed_orientation, simulate_support, uniform_array
-from model.beta import solve_beta, solve_beta_scalar, solve_beta_secant
-from model.uniform import BETA_GTOL
+from model.arrays.beta import solve_beta, solve_beta_scalar, solve_beta_secant
+from model.arrays.uniform import BETA_GTOL
 
 
 def test_vectorised_solver_on_known_roots():

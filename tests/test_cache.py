@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 
 from model import Params, SolverOptions
-from model import cache as cache_mod
-from model import cache_keys
-from model.cache import DiskCache, make_key
+from model.runs import cache as cache_mod
+from model.runs import cache_keys
+from model.runs.cache import DiskCache, make_key
 
 
 def _key(**changes):
@@ -110,7 +110,7 @@ def test_corrupted_file_is_detected_and_recomputed(cache, caplog, damage):
     path.write_bytes(bytes(data))
 
     compute = Counter(seed=1)
-    with caplog.at_level(logging.WARNING, logger="model.cache"):
+    with caplog.at_level(logging.WARNING, logger="model.runs.cache"):
         result = cache.get_or_compute(_key(), compute)
     assert compute.calls == 1, "a damaged file must not be returned"
     _assert_same(result, _arrays(seed=1))
@@ -127,7 +127,7 @@ def test_checksum_catches_tampered_values(cache, caplog):
     contents["F"] = contents["F"] + 1e-12
     with open(path, "wb") as f:
         np.savez(f, **contents)
-    with caplog.at_level(logging.WARNING, logger="model.cache"):
+    with caplog.at_level(logging.WARNING, logger="model.runs.cache"):
         assert cache.get(_key()) is None
     assert any("checksum" in r.getMessage() for r in caplog.records)
     assert not path.exists()
@@ -143,7 +143,7 @@ def test_stale_version_is_recomputed(tmp_path, caplog):
     new.path.mkdir(parents=True, exist_ok=True)
     shutil.copy(old.file_for(_key()), new.file_for(_key()))
     compute = Counter(seed=2)
-    with caplog.at_level(logging.WARNING, logger="model.cache"):
+    with caplog.at_level(logging.WARNING, logger="model.runs.cache"):
         result = new.get_or_compute(_key(), compute)
     assert compute.calls == 1
     _assert_same(result, _arrays(seed=2))
@@ -154,7 +154,7 @@ def test_stale_key_is_recomputed(cache, caplog):
     cache.put(_key(), _arrays())
     other = _key(tol=1e-5)
     cache.path.joinpath(cache.file_for(other).name).write_bytes(cache.file_for(_key()).read_bytes())
-    with caplog.at_level(logging.WARNING, logger="model.cache"):
+    with caplog.at_level(logging.WARNING, logger="model.runs.cache"):
         assert cache.get(other) is None
     assert any("stored key differs" in r.getMessage() for r in caplog.records)
 
@@ -170,7 +170,7 @@ def test_concurrent_writers_leave_a_valid_file(cache, caplog):
     procs = [ctx.Process(target=_writer, args=(cache.root, seed, 150)) for seed in (10, 11)]
     for p in procs:
         p.start()
-    with caplog.at_level(logging.WARNING, logger="model.cache"):
+    with caplog.at_level(logging.WARNING, logger="model.runs.cache"):
         while any(p.is_alive() for p in procs):  # read while they write: never a partial file
             got = cache.get(_key())
             if got is not None:
@@ -196,7 +196,7 @@ def test_unwritable_directory_degrades_with_one_warning(tmp_path, caplog, monkey
 
     monkeypatch.setattr(cache_mod.tempfile, "mkstemp", refuse)
     compute = Counter()
-    with caplog.at_level(logging.WARNING, logger="model.cache"):
+    with caplog.at_level(logging.WARNING, logger="model.runs.cache"):
         for _ in range(3):
             _assert_same(c.get_or_compute(_key(), compute), _arrays())
     assert compute.calls == 3 and not c.writable
@@ -209,7 +209,7 @@ def test_disk_full_degrades_and_leaves_no_temp_file(cache, caplog, monkeypatch):
     def full(*args, **kwargs):
         raise OSError(errno.ENOSPC, "No space left on device (simulated)")
     monkeypatch.setattr(cache_mod.os, "fsync", full)
-    with caplog.at_level(logging.WARNING, logger="model.cache"):
+    with caplog.at_level(logging.WARNING, logger="model.runs.cache"):
         assert cache.put(_key(), _arrays()) is False
         assert cache.put(_key(tol=1e-4), _arrays()) is False
     assert len(caplog.records) == 1
@@ -253,10 +253,10 @@ def test_changed_model_code_misses(cache, monkeypatch):
 def test_code_digest_covers_computing_code_but_not_the_report_and_cli():
     from pathlib import Path
 
-    root = Path(cache_mod.__file__).parent
+    root = Path(cache_mod.__file__).parents[1]  # the model package
     covered = {p.relative_to(root).parts[0] for p in root.rglob("*.py")} - set(
         cache_keys.PRESENTATION)
-    assert {"uniform.py", "fixed.py", "_kernel", "params.py"} <= covered
+    assert {"arrays", "contact", "designs", "lab", "runs", "_kernel", "controls.py"} <= covered
     assert {"reproduce", "cli"} <= {p.name for p in root.iterdir()}
 
 
@@ -292,7 +292,7 @@ def test_oversize_entry_is_refused_before_it_is_unpacked(cache, caplog):
     assert on_disk < 200_000
     tracemalloc.start()
     try:
-        with caplog.at_level(logging.WARNING, logger="model.cache"):
+        with caplog.at_level(logging.WARNING, logger="model.runs.cache"):
             assert cache.get(_key()) is None
         _, peak = tracemalloc.get_traced_memory()
     finally:
@@ -309,7 +309,7 @@ def test_entry_larger_than_the_bound_on_disk_is_not_read(tmp_path, caplog):
     big = {"F": np.zeros(5_000)}  # 40 kB: beyond the bound, so not written either
     assert small.put(_key(tol=1e-4), big) is False and small.writable
     DiskCache(tmp_path).put(_key(tol=1e-4), big)  # written by a cache with a larger bound
-    with caplog.at_level(logging.WARNING, logger="model.cache"):
+    with caplog.at_level(logging.WARNING, logger="model.runs.cache"):
         assert small.get(_key(tol=1e-4)) is None
     assert any("more than the 10000" in r.getMessage() for r in caplog.records)
 
@@ -342,7 +342,7 @@ def test_folder_at_an_entry_skips_that_entry_only(cache, caplog):
     blocker = cache.file_for(_key())
     blocker.mkdir()
     (blocker / "inside").write_text("x")
-    with caplog.at_level(logging.WARNING, logger="model.cache"):
+    with caplog.at_level(logging.WARNING, logger="model.runs.cache"):
         assert _get_within(cache, _key()) is None
         assert cache.put(_key(), _arrays()) is False
     assert cache.writable and DiskCache(cache.root).writable  # caching stays on

@@ -10,8 +10,8 @@ import pytest
 
 from model import cli
 from model.cli import main
-from model.params import REGIMES, Params
-from model.support import simulate_support
+from model.contact.params import REGIMES, Params
+from model.contact.support import simulate_support
 
 ROW = re.compile(r"^  (?P<name>\S+)\s{2,}(?P<value>\S+(?: \S+)*)(?:  .*)?$")
 REQUIRED_KEYS = {"t_out", "state_out", "F_mean_x", "F_mean_y", "W", "D_x", "D_y", "U_el", "K",
@@ -203,8 +203,8 @@ def test_long_contact_with_samples_keeps_a_bounded_record(capsys):
     state and agree with an unthinned run at a looser tolerance."""
     from model import _kernel
     from model._kernel.record import N_SUB
-    from model.contacts import run_contacts
-    from model.options import SolverOptions
+    from model.arrays.contacts import run_contacts
+    from model.contact.options import SolverOptions
 
     argv = ["--k-r", "0.01", "--k-theta", "0.01", "--F-N", "10"]
     code, out, err = run(capsys, "support", *argv, "--rtol", "1e-14", "--max-steps", "1e7",

@@ -11,11 +11,12 @@ import time
 import numpy as np
 import pytest
 
-from model import fixed_orientation, sweeps, uniform_array
+from model import fixed_orientation, uniform_array
+from model.runs import sweeps
 from model.cli import main
 from model.cli.array import QUADRATURE_KEYS
 from model.cli.sweep import ProgressBar
-from model.params import REGIMES
+from model.contact.params import REGIMES
 
 ARRAY_KEYS = {"FTx_over_mu0FN", "FTx_over_mu0FN_duration", "FTy_over_mu0FN", "Dy_over_Dx",
               "Nc_over_Nc0", "beta", "work_split", "quadrature_error", "success", "message",

@@ -7,10 +7,10 @@ import pytest
 
 from model.cli import main
 from model.cli.array import QUADRATURE_KEYS
-from model.design import optimise
-from model.distribution_array import distribution_array
-from model.distributions import Fixed, Histogram, Mixture, Uniform, VonMises
-from model.params import REGIMES
+from model.designs.design import optimise
+from model.designs.distribution_array import distribution_array
+from model.designs.distributions import Fixed, Histogram, Mixture, Uniform, VonMises
+from model.contact.params import REGIMES
 
 #: The keys ``array --orientation uniform --json`` prints today.
 UNIFORM_KEYS = {"FTx_over_mu0FN", "FTx_over_mu0FN_duration", "FTy_over_mu0FN", "Dy_over_Dx",
@@ -172,7 +172,7 @@ EXAMPLE = ["--D", "5 um", "--h", "50 um", "--E", "1 GPa", "--nu", "0.4", "--rho"
 
 
 def test_pillar_places_the_worked_example(capsys):
-    from model.units import PillarDesign
+    from model.designs.units import PillarDesign
 
     code, out, err = run(capsys, "pillar", *EXAMPLE, "--json")
     assert (code, err) == (0, "")
@@ -224,7 +224,7 @@ def test_pillar_budget_that_runs_out_prints_the_result_and_its_outcome(capsys):
                                   ["--evaluate", "--budget", "nan"],
                                   ["--evaluate", "--budget", "soon"]])
 def test_pillar_bad_budget_is_named_before_any_work(capsys, monkeypatch, argv):
-    import model.design_point as design_point
+    import model.designs.design_point as design_point
 
     def started(*args, **kwargs):
         pytest.fail("the evaluation started although --budget was refused")

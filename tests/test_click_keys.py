@@ -5,7 +5,7 @@ import pytest
 
 from app.state import ExplorerState
 from app.views.click_keys import DEFAULT_CELL, map_cell, map_steps, theta_steps
-from model.shipped_map import load_regime_map
+from model.runs.shipped_map import load_regime_map
 
 
 def _buttons(column) -> dict:

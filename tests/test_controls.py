@@ -4,8 +4,8 @@ import math
 
 from model import REGIMES, Params, SolverOptions
 from model.controls import CONTROLS, DEFAULT_REGIME, LOAD_RANGE, STIFFNESS_RANGE
-from model.options import RTOL_CHOICES
-from model.params import RANGES
+from model.contact.options import RTOL_CHOICES
+from model.contact.params import RANGES
 
 
 def test_defaults_are_the_models():
@@ -48,7 +48,7 @@ def test_model_imports_no_gui():
     import subprocess
     import sys
 
-    code = ("import sys, model.controls, model.quantities, model.validation, model.csvfile; "
+    code = ("import sys, model.controls, model.arrays.quantities, model.validation, model.csvfile; "
             "bad = [m for m in ('panel', 'param', 'bokeh', 'holoviews', 'app') if m in sys.modules]; "
             "sys.exit(bool(bad))")
     assert subprocess.run([sys.executable, "-c", code]).returncode == 0

@@ -1,4 +1,4 @@
-"""The design optimiser (model.design): it finds the minimum of a dense scan, respects
+"""The design optimiser (model.designs.design): it finds the minimum of a dense scan, respects
 its bound, orders the families as theory says, reports progress, cancels and caches."""
 import math
 import threading
@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 from model import fixed_orientation, orientation_sweep
-from model.design import OptimisationCancelled, optimise
-from model.distribution_array import distribution_array
-from model.distributions import Uniform
-from model.params import REGIMES
+from model.designs.design import OptimisationCancelled, optimise
+from model.designs.distribution_array import distribution_array
+from model.designs.distributions import Uniform
+from model.contact.params import REGIMES
 
 DENSE = (np.arange(720) + 0.5) * math.pi / 720
 
@@ -115,7 +115,7 @@ def test_evaluation_budget_is_reported():
     (dict(family="pair", objective="max-FTy"), "F_T,y = 0"), (dict(bound=-0.1), "bound=-0.1"),
     (dict(n_scan=2), "n_scan=2"), (dict(beta="x"), "beta='x'"), (dict(tol=1.0), "tol=1.0")])
 def test_bad_arguments_are_named_before_any_work(kwargs, match, monkeypatch):
-    import model.design_search as search
+    import model.designs.design_search as search
 
     def boom(*args, **kw):
         raise AssertionError("work was done")

@@ -11,8 +11,8 @@ from app.state import ExplorerState
 from app.urlstate import MAX_VALUE_CHARS, parse
 from app.views.page import Dashboard
 from model import Params
-from model.distribution_array import distribution_array
-from model.distributions import Histogram, from_dict
+from model.designs.distribution_array import distribution_array
+from model.designs.distributions import Histogram, from_dict
 
 FAST = "?tab=design&d_FN=1%20N&d_V0=100%20m/s&d_Vs=10%20m/s"
 #: 36 bins of 10 degrees, four times as many supports between 45 and 85 degrees.

@@ -15,10 +15,10 @@ from app.defaults import DEFAULTS, LAW_INPUTS
 from app.urlstate import parse, parse_pinned, pinned_text
 from app.views.page import Dashboard
 from model import FrictionLaw, Params
-from model.design_table import table_csv
-from model.friction_curve import CurveFileError, read_curve
-from model.friction_fit import fit_friction
-from model.units import PillarDesign
+from model.designs.design_table import table_csv
+from model.lab.friction_curve import CurveFileError, read_curve
+from model.lab.friction_fit import fit_friction
+from model.designs.units import PillarDesign
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "flat_friction.csv"

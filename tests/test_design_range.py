@@ -8,10 +8,10 @@ import math
 import pytest
 
 from model import Params
-from model.design_point import evaluate, model_point
-from model.distribution_array import OUTCOMES, distribution_array
-from model.distributions import Uniform, VonMises
-from model.units import PillarDesign
+from model.designs.design_point import evaluate, model_point
+from model.designs.distribution_array import OUTCOMES, distribution_array
+from model.designs.distributions import Uniform, VonMises
+from model.designs.units import PillarDesign
 
 NUMBERS = ("FTx_over_mu0FN", "FTx_over_mu0FN_duration", "FTy_over_mu0FN", "Dy_over_Dx",
            "Nc_over_Nc0", "beta", "Uel_over_W")

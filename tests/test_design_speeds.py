@@ -12,8 +12,8 @@ import pytest
 from app.views.page import Dashboard
 from app.state import ExplorerState
 from model.cli import main
-from model.friction_compare import compare_friction, read_measured
-from model.friction_example import STRUCTURED_DESIGN
+from model.lab.friction_compare import compare_friction, read_measured
+from model.lab.friction_example import STRUCTURED_DESIGN
 
 ROOT = Path(__file__).resolve().parents[1]
 MEASURED = ROOT / "examples" / "structured_friction.csv"
@@ -115,7 +115,7 @@ def test_a_speed_past_its_budget_is_said(page, monkeypatch):
     names the speed and keeps the others."""
     from app import worker
     from app.jobs import OverBudget
-    from model.speed_curve import SpeedPoint
+    from model.lab.speed_curve import SpeedPoint
 
     def slow(design, V0, *args):
         if V0 > 0.7:

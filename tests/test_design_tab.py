@@ -14,9 +14,9 @@ from app.defaults import DEFAULTS, DESIGN_INPUTS
 from app.urlstate import parse
 from app.views.page import Dashboard
 from model import Params
-from model.distribution_array import distribution_array
-from model.distributions import VonMises
-from model.friction import mu0
+from model.designs.distribution_array import distribution_array
+from model.designs.distributions import VonMises
+from model.contact.friction import mu0
 
 FAST = "?tab=design&d_FN=1%20N&d_V0=100%20m/s&d_Vs=10%20m/s"
 
@@ -163,7 +163,7 @@ def test_a_mixture_of_two_weighted_components_is_edited_computed_and_drawn(page)
                    L0=100.0)
         beta = a["array"]["beta"]
         vm = distribution_array(p, VonMises(math.pi / 2, 4.0), beta=beta, tol=1e-4)
-        from model.distributions import Fixed
+        from model.designs.distributions import Fixed
         fx = distribution_array(p, Fixed(math.radians(30.0)), beta=beta)
         mixed = 0.75 * vm.FTx_over_mu0FN + 0.25 * fx.FTx_over_mu0FN
         assert a["array"]["FTx_over_mu0FN"] == pytest.approx(mixed, abs=3e-3)

@@ -1,7 +1,7 @@
 """A result that did not converge never carries an error bar that looks like one: members
 that did not finish took their neighbour's values, so the error of F_T,x and F_T,y is the
 half-width of bounds that hold whatever those members' forces are, and nothing else has
-an error bar (``model.distribution_result``). The same everywhere: the result objects,
+an error bar (``model.designs.distribution_result``). The same everywhere: the result objects,
 ``to_dict``, the design's physical results, its table and CSV, the command line."""
 import csv
 import json
@@ -12,12 +12,12 @@ import sys
 import pytest
 
 from model import Params
-from model.design_point import evaluate
-from model.design_table import headline, rows, table_csv
-from model.distribution_array import distribution_array
-from model.distribution_result import value_text
-from model.distributions import VonMises
-from model.units import PillarDesign, measure_text
+from model.designs.design_point import evaluate
+from model.designs.design_table import headline, rows, table_csv
+from model.designs.distribution_array import distribution_array
+from model.designs.distribution_result import value_text
+from model.designs.distributions import VonMises
+from model.designs.units import PillarDesign, measure_text
 
 STIFF = Params(k_r=3.0, k_theta=3.0, F_N=1.0)
 DIST = VonMises(math.pi / 2, 4.0)

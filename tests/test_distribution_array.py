@@ -1,18 +1,18 @@
-"""model.distribution_array's bookkeeping: members reused across the beta iterations, a
+"""model.designs.distribution_array's bookkeeping: members reused across the beta iterations, a
 time budget honoured inside the contacts, and the named outcome of every result."""
 import math
 
 import numpy as np
 import pytest
 
-import model.distribution_array as da
+import model.designs.distribution_array as da
 from model import Params
-from model.distribution_array import MIN_STEPS, distribution_array
-from model.distribution_result import OUTCOMES
-from model.distributions import Pair, Uniform, VonMises
-from model.params import REGIMES
-from model.design_point import evaluate
-from model.units import PillarDesign
+from model.designs.distribution_array import MIN_STEPS, distribution_array
+from model.designs.distribution_result import OUTCOMES
+from model.designs.distributions import Pair, Uniform, VonMises
+from model.contact.params import REGIMES
+from model.designs.design_point import evaluate
+from model.designs.units import PillarDesign
 
 #: The notes' LDPE pillars at V0 = 1 cm/s, beyond the model range: computed scaled to
 #: k~_theta = 1e6, where the members near theta0 = 0 ring for a million steps each.

@@ -1,5 +1,5 @@
-"""Orientation distributions and their p-weighted arrays (model.distributions,
-model.distribution_array): normalisation, limits, symmetry, and agreement with an
+"""Orientation distributions and their p-weighted arrays (model.designs.distributions,
+model.designs.distribution_array): normalisation, limits, symmetry, and agreement with an
 independent dense reference."""
 import math
 
@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 
 from model import Params, fixed_orientation, orientation_sweep, uniform_array
-from model.distribution_array import distribution_array
-from model.distributions import (Fixed, Histogram, Mixture, Pair, Rotated, Uniform, VonMises,
+from model.designs.distribution_array import distribution_array
+from model.designs.distributions import (Fixed, Histogram, Mixture, Pair, Rotated, Uniform, VonMises,
                                  from_dict, rotated)
-from model.params import REGIMES
+from model.contact.params import REGIMES
 
 CIRCLE = np.linspace(0.0, 2 * math.pi, 200_001)
 
@@ -92,7 +92,7 @@ def test_bad_distributions_are_named(make, match):
     ("lower_deg,upper_deg,weight\n0,200,1\n200,400,1\n", "span at most 360"),
 ])
 def test_bad_histogram_files_are_named_before_any_work(tmp_path, text, match, monkeypatch):
-    import model.distribution_array as da
+    import model.designs.distribution_array as da
 
     def boom(*args, **kwargs):
         raise AssertionError("a contact was integrated")
@@ -217,7 +217,7 @@ def test_von_mises_agrees_with_a_tight_reference(k_r, k_theta, F_N, beta):
 
 
 def test_concentrated_mass_costs_no_trajectory_where_the_density_vanishes(monkeypatch):
-    import model.distribution_array as da
+    import model.designs.distribution_array as da
 
     seen = []
     real = da.run_contacts

@@ -66,7 +66,7 @@ def test_build_fills_the_disk_cache_with_the_load_tab_curves(image):
     results = Path(image.env["MICROPILLAR_CACHE_DIR"])
     before = cache_snapshot(results)
     assert before, f"the build left {results} empty"
-    code = ("import sys; from model import REGIMES; from model.sweeps import regime_map\n"
+    code = ("import sys; from model import REGIMES; from model.runs.sweeps import regime_map\n"
             "for f in map(float, sys.argv[1:]):\n"
             "    for p in REGIMES.values():\n"
             "        regime_map(k_r=[p.k_r], k_theta=[p.k_theta], F_N=f, tol=1e-3)\n")

@@ -27,8 +27,8 @@ from app import jobs, worker
 from app import slot as slots
 from app.state import ExplorerState
 from fakes import InProcessPool
-from model import cache as cache_mod
-from model.sweeps import regime_map
+from model.runs import cache as cache_mod
+from model.runs.sweeps import regime_map
 
 
 # ---------------------------------------------------------------------- (a) failing runs

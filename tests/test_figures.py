@@ -7,7 +7,7 @@ from bokeh.models import LogScale
 
 from model import REGIMES, mu0, orientation_table, simulate_support
 from app import figures as F
-from model.shipped_map import load_regime_map
+from model.runs.shipped_map import load_regime_map
 
 
 @pytest.fixture(scope="module")

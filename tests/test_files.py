@@ -3,7 +3,7 @@ import pytest
 
 from model import csvfile
 from model.files import write_atomic, write_text_atomic
-from model.sweeps import SweepResult, read_csv
+from model.runs.sweeps import SweepResult, read_csv
 
 
 def test_a_failed_write_leaves_the_old_file_and_no_temporary(tmp_path):

@@ -116,7 +116,7 @@ def test_7_pendulum_transverse_force_never_negative():
     "(1.14 -> 1.38 at k_theta = 0.01, likewise at every k_theta): not monotone in k_r as "
     "Fig. 8a suggests; the coarse trend of finding 5 holds (test_5_contact_count)"))
 def test_5_contact_count_monotone_on_the_fine_map():
-    from model.shipped_map import load_regime_map
+    from model.runs.shipped_map import load_regime_map
 
     m = load_regime_map()
     assert np.all(np.diff(m.Nc_over_Nc0, axis=0) <= 1e-3)

@@ -7,8 +7,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from model.friction import SERIES_BELOW, mu, mu0, mu_over_s, series_coefficients
-from model.params import DEFAULTS, Params
+from model.contact.friction import SERIES_BELOW, mu, mu0, mu_over_s, series_coefficients
+from model.contact.params import DEFAULTS, Params
 
 ZETA = DEFAULTS["zeta"]
 S_SERIES = SERIES_BELOW / ZETA  # below this speed mu_over_s uses the Taylor series

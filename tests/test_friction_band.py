@@ -7,10 +7,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from model.friction import law
-from model.friction_curve import FrictionCurve, read_curve
-from model.friction_example import TRUE_LAW
-from model.friction_fit import fit_friction
+from model.contact.friction import law
+from model.lab.friction_curve import FrictionCurve, read_curve
+from model.lab.friction_example import TRUE_LAW
+from model.lab.friction_fit import fit_friction
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "flat_friction.csv"
 #: 100 speeds from 0.01 to 100 V_s, as in test_friction_fit.

@@ -1,5 +1,5 @@
 """The predicted friction-velocity curve of the structured surface compared with a measured
-one (``model.friction_compare``, ``micropillar pillar --compare``): the differences, their
+one (``model.lab.friction_compare``, ``micropillar pillar --compare``): the differences, their
 RMS and the speeds named as disagreeing are right on constructed cases; bad inputs are
 refused with one line; the shipped example is what its header says."""
 import json
@@ -11,10 +11,10 @@ import pytest
 
 from model import FrictionCurve, compare_friction
 from model.cli import main
-from model.friction_compare import DEFAULT_MU_ERR, read_measured
-from model.friction_curve import CurveFileError
-from model.friction_example import STRUCTURED_SPEEDS, structured_text
-from model.speed_curve import SpeedCurve, SpeedPoint, friction_velocity
+from model.lab.friction_compare import DEFAULT_MU_ERR, read_measured
+from model.lab.friction_curve import CurveFileError
+from model.lab.friction_example import STRUCTURED_SPEEDS, structured_text
+from model.lab.speed_curve import SpeedCurve, SpeedPoint, friction_velocity
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "structured_friction.csv"
@@ -114,8 +114,8 @@ def _run(capsys, *argv):
 
 
 def test_cli_round_trip_agrees_with_the_api(capsys, tmp_path):
-    from model.distributions import Fixed
-    from model.units import PillarDesign
+    from model.designs.distributions import Fixed
+    from model.designs.units import PillarDesign
 
     design = PillarDesign.example(E="1 MPa", V0="1 m/s", V_s="1 mm/s", L_x="0.1 mm",
                                   F_N="10 uN")

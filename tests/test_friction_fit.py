@@ -1,4 +1,4 @@
-"""Fitting the friction law of Eq. (4) to a measured curve: ``model.friction_fit`` and
+"""Fitting the friction law of Eq. (4) to a measured curve: ``model.lab.friction_fit`` and
 ``micropillar friction fit``. The fit recovers known coefficients within its intervals,
 warns when the data do not determine them, and refuses bad files naming the line."""
 import json
@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from model.cli import main
-from model.friction_curve import CurveFileError, FrictionCurve, read_curve
-from model.friction_example import TRUE_LAW, example_text
-from model.friction_fit import _jacobian, fit_friction
+from model.lab.friction_curve import CurveFileError, FrictionCurve, read_curve
+from model.lab.friction_example import TRUE_LAW, example_text
+from model.lab.friction_fit import _jacobian, fit_friction
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "flat_friction.csv"
@@ -62,7 +62,7 @@ def test_plateau_only_data_are_flagged_as_undetermined():
 def test_analytic_jacobian_matches_finite_differences():
     p = np.array([1.1, 1.6, -7.0, math.log(2e-3)])
     v = np.geomspace(1e-5, 1.0, 50)
-    from model.friction_fit import _model
+    from model.lab.friction_fit import _model
 
     jac = _jacobian(p, v)
     for k in range(4):

@@ -9,9 +9,9 @@ import pytest
 
 from model import DEFAULTS, FrictionLaw, Params, fixed_orientation, mu
 from model.cli import main
-from model.friction import law
-from model.design_point import model_params
-from model.units import PillarDesign
+from model.contact.friction import law
+from model.designs.design_point import model_params
+from model.designs.units import PillarDesign
 
 PILLAR = ["pillar", "--D", "5 um", "--h", "50 um", "--E", "1 GPa", "--nu", "0.4", "--rho",
           "920 kg/m^3", "--r0", "10 um", "--d-x", "20 um", "--d-y", "20 um", "--L-x", "1 mm",

@@ -9,7 +9,7 @@ from scipy.integrate._ivp.rk import RK45
 
 from model import REGIMES, mu_over_s
 from model import _kernel
-from model.reference import reference_rhs
+from model.contact.reference import reference_rhs
 
 dopri5 = importlib.import_module("model._kernel.dopri5")
 rodas4 = importlib.import_module("model._kernel.rodas4")
@@ -124,8 +124,8 @@ def test_empirical_convergence_order(step_fn, order, steps):
 
 
 def test_kernel_exit_quantities_match_numpy():
-    from model.contacts import exit_quantities, run_contacts
-    from model.options import SolverOptions
+    from model.arrays.contacts import exit_quantities, run_contacts
+    from model.contact.options import SolverOptions
 
     params = REGIMES["soft"].replace(F_N=2.0, beta=0.6)
     theta0 = np.array([0.3, 1.7, 2.9])

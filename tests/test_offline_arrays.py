@@ -1,9 +1,9 @@
 """The offline explorer's arrays (app/offline/arrays.js, solvers.js) against the Python model.
 
 One model, two implementations: Node runs the JavaScript uniform array (the quadrature
-over theta0 of model/uniform.py, wrapped in the self-consistent beta of model/beta.py) and
-the fixed arrays with their self-consistent beta (model/fixed.py), and the results are
-compared with Python's on a grid covering the four regimes (model.params.REGIMES) and
+over theta0 of model/arrays/uniform.py, wrapped in the self-consistent beta of model/arrays/beta.py) and
+the fixed arrays with their self-consistent beta (model/arrays/fixed.py), and the results are
+compared with Python's on a grid covering the four regimes (model.contact.params.REGIMES) and
 loads 0.1-10 (docs/offline.md, "Agreement").
 
 * Uniform arrays at tol 1e-3: F_T,x/(mu0 F_N) (both averages) and N_c/N_c0 within tol of
@@ -22,7 +22,7 @@ from importlib import resources
 import pytest
 
 from model import REGIMES, orientation_sweep, uniform_array
-from model.friction import mu0
+from model.contact.friction import mu0
 
 from test_offline_kernel import _node
 

@@ -27,9 +27,9 @@ import pytest
 from model import REGIMES, Params, simulate_support
 from model import _kernel
 from model._kernel.driver import integrate
-from model.params import DEFAULTS, RANGES
-from model.options import ATOL, RTOL, TAU_MAX
-from model.results import Status
+from model.contact.params import DEFAULTS, RANGES
+from model.contact.options import ATOL, RTOL, TAU_MAX
+from model.contact.results import Status
 
 RUNNER = resources.files("app.offline") / "node_simulate.js"
 #: Quantities compared, each with the scale it is relative to besides itself: energies are

@@ -17,7 +17,7 @@ import pytest
 
 from app.lesson import STEPS, lesson_url, offline_url
 from app.offline.pack import CLOSEST_TABS, OFFLINE_TABS, config
-from model.params import REGIMES
+from model.contact.params import REGIMES
 
 from test_offline_kernel import _node
 

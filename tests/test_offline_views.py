@@ -18,9 +18,9 @@ import pytest
 from app.figures import histories, live_energy, polar, scene
 from app.offline import figures as offline_figures
 from model import Params
-from model.friction import mu0
-from model.results import TimeSeries
-from model.shipped_map import SHIPPED_LOADS, load_regime_map
+from model.contact.friction import mu0
+from model.contact.results import TimeSeries
+from model.runs.shipped_map import SHIPPED_LOADS, load_regime_map
 
 from test_offline_kernel import _node
 

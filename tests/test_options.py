@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from model.options import METHODS, SolverOptions
+from model.contact.options import METHODS, SolverOptions
 
 
 def test_defaults():

@@ -41,7 +41,7 @@ def test_the_load_csv_holds_every_curve_of_the_tab(tmp_path):
 
 def test_the_array_csv_is_the_tab_s_live_curves(tmp_path):
     from model import Params
-    from model.array_motion import array_motion
+    from model.arrays.array_motion import array_motion
 
     motion = array_motion(Params(k_r=0.5, k_theta=0.2, F_N=2.0), n_frames=30)
     header, cols = _read(array_csv(motion), tmp_path)

@@ -4,8 +4,8 @@ import math
 
 import pytest
 
-from model.beta import BETA_MIN
-from model.params import DEFAULTS, REGIMES, Params
+from model.arrays.beta import BETA_MIN
+from model.contact.params import DEFAULTS, REGIMES, Params
 
 FIELDS = [f.name for f in dataclasses.fields(Params)]
 
@@ -153,7 +153,7 @@ def test_regime_constructor_validates():
 def test_array_functions_refuse_fields_they_would_ignore():
     """Per-call choices travel as arguments: a theta0 or beta in Params that an array
     function would not use is an error naming the field and the fix."""
-    from model.params import check_array_params
+    from model.contact.params import check_array_params
 
     base = Params(1.0, 1.0)
     check_array_params(base, "uniform_array", "self", uses_theta0=False)

@@ -13,8 +13,8 @@ from app.plot_words import (array_description, load_description, map_description
                             polar_description)
 from app.views.data_table import column_header, shown_rows, table_html
 from model import Params, csvfile
-from model.quantities import QUANTITIES
-from model.shipped_map import load_regime_map
+from model.arrays.quantities import QUANTITIES
+from model.runs.shipped_map import load_regime_map
 
 NUMBER = r"(−?[0-9]+(?:\.[0-9]+)?(?:e[+−]?[0-9]+)?)"
 

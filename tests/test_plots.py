@@ -14,7 +14,7 @@ from bokeh.models import HoverTool, LogScale  # noqa: E402
 from app.plots import DISAGREE_COLOR, plot  # noqa: E402
 from model import (FrictionCurve, FrictionLaw, Params, compare_friction,  # noqa: E402
                    fit_friction, orientation_sweep, read_curve, regime_map, uniform_array)
-from model.speed_curve import SpeedCurve, SpeedPoint  # noqa: E402
+from model.lab.speed_curve import SpeedCurve, SpeedPoint  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 SPEED_LABEL = "sliding speed V₀ (m/s)"

@@ -17,8 +17,8 @@ from hypothesis import HealthCheck, Phase, assume, given, settings
 from hypothesis import strategies as st
 
 from model import IntegrationError, Params, simulate_support
-from model.options import METHODS, SolverOptions
-from model.results import ACCURACY_FACTOR, SupportResult
+from model.contact.options import METHODS, SolverOptions
+from model.contact.results import ACCURACY_FACTOR, SupportResult
 
 # --------------------------------------------------------------------------- the spec
 

@@ -15,7 +15,7 @@ from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
 from model import Params, fixed_orientation, mu0, orientation_sweep, uniform_array
-from model.quadrature import integrate
+from model.arrays.quadrature import integrate
 
 PHASES = (Phase.explicit, Phase.reuse, Phase.generate, Phase.shrink)
 ARRAYS = settings(max_examples=40, deadline=60_000, database=None, phases=PHASES,

@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from model.quadrature import NODES, W_G, W_K, integrate
+from model.arrays.quadrature import NODES, W_G, W_K, integrate
 
 
 @pytest.mark.parametrize("k", range(24))

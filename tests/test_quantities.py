@@ -9,16 +9,16 @@ import numpy as np
 import pytest
 
 from model import REGIMES, Params, csvfile, simulate_support
-from model.contacts import Contacts, run_contacts
-from model.fixed import FixedArrayResult, OrientationSweep, fixed_orientation
-from model.options import SolverOptions
-from model.quantities import (AVERAGES, MAP_FIGURES, POLAR_FIGURES, QUANTITIES, STRUCTURE,
+from model.arrays.contacts import Contacts, run_contacts
+from model.arrays.fixed import FixedArrayResult, OrientationSweep, fixed_orientation
+from model.contact.options import SolverOptions
+from model.arrays.quantities import (AVERAGES, MAP_FIGURES, POLAR_FIGURES, QUANTITIES, STRUCTURE,
                               TABLES, carried_by, describe, format_value, label, quantity,
                               readout, value_of)
-from model.results import SupportResult, TimeSeries
-from model.shipped_map import RegimeMap
-from model.sweeps import orientation_table, regime_map
-from model.uniform import UniformArrayResult
+from model.contact.results import SupportResult, TimeSeries
+from model.runs.shipped_map import RegimeMap
+from model.runs.sweeps import orientation_table, regime_map
+from model.arrays.uniform import UniformArrayResult
 
 RESULT_TYPES = [SupportResult, TimeSeries, Contacts, FixedArrayResult, OrientationSweep,
                 UniformArrayResult, RegimeMap]

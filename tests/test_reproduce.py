@@ -19,7 +19,7 @@ from app.reproduce.render import browser_problem
 from model.cli import main
 from model.reproduce import FIGURES
 from model.reproduce import reproduce as compute_only
-from model.sweeps import read_csv
+from model.runs.sweeps import read_csv
 
 from browser.conftest import browser_required, unavailable
 

@@ -9,8 +9,8 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from model import REGIMES, _kernel, simulate_support
-from model.options import SolverOptions
-from model.reference import integrate_reference, reference_rhs
+from model.contact.options import SolverOptions
+from model.contact.reference import integrate_reference, reference_rhs
 
 dop853 = importlib.import_module("model._kernel.dop853")
 record = importlib.import_module("model._kernel.record")

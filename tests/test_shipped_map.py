@@ -8,8 +8,8 @@ import pytest
 
 import model
 from model import Params, uniform_array
-from model.uniform import BETA_GTOL
-from model.shipped_map import (SHIPPED_LOADS, RegimeMap, compute_regime_map, load_regime_map, main,
+from model.arrays.uniform import BETA_GTOL
+from model.runs.shipped_map import (SHIPPED_LOADS, RegimeMap, compute_regime_map, load_regime_map, main,
                               packaged_path, save_regime_map)
 
 #: A recomputed beta and a shipped one agree to within the sum of the residuals each was
@@ -119,9 +119,9 @@ def test_compute_small_map_matches_shipped_corners(shipped, tmp_path, capsys):
 
 def test_regime_map_name_stays_the_sweep_function():
     import model
-    import model.shipped_map  # noqa: F401  (a submodule import must not shadow the function)
+    import model.runs.shipped_map  # noqa: F401  (a submodule import must not shadow the function)
 
-    assert callable(model.regime_map) and model.regime_map.__module__ == "model.sweeps"
+    assert callable(model.regime_map) and model.regime_map.__module__ == "model.runs.sweeps"
 
 
 @pytest.mark.parametrize("F_N", SHIPPED_LOADS)

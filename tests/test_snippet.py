@@ -17,8 +17,8 @@ import pytest
 import model.cli as cli
 from model.cli import main
 from model.cli import snippet as cli_snippet
-from model.sweeps import read_csv
-from model.support import simulate_support
+from model.runs.sweeps import read_csv
+from model.contact.support import simulate_support
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -167,7 +167,7 @@ def test_bad_flags_are_usage_errors_and_print_no_snippet(capsys, argv, flag):
 def test_printing_leaves_the_model_functions_in_place(capsys):
     from model import fixed_orientation, uniform_array
     from model.cli import array, sweep
-    from model.sweeps import stiffness_sweep
+    from model.runs.sweeps import stiffness_sweep
 
     snippet(capsys, "support", "--regime", "stiff")
     snippet(capsys, "array", "--regime", "stiff", "--theta0", "1")

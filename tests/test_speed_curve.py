@@ -1,4 +1,4 @@
-"""The structured surface's friction against sliding speed (``model.speed_curve``,
+"""The structured surface's friction against sliding speed (``model.lab.speed_curve``,
 ``micropillar pillar --speeds``): at every speed it is the design's own evaluation,
 beside the flat material's mu(V0) of Eq. (4); a speed out of reach is named, not fatal."""
 import json
@@ -8,12 +8,12 @@ import numpy as np
 import pytest
 
 from model.cli import main
-from model.design_point import evaluate, model_params
-from model.distributions import Fixed, VonMises
-from model.friction import mu0
-from model.friction_law import FrictionLaw
-from model.speed_curve import friction_velocity, parse_speeds, speed_range
-from model.units import PillarDesign, ureg
+from model.designs.design_point import evaluate, model_params
+from model.designs.distributions import Fixed, VonMises
+from model.contact.friction import mu0
+from model.lab.friction_law import FrictionLaw
+from model.lab.speed_curve import friction_velocity, parse_speeds, speed_range
+from model.designs.units import PillarDesign, ureg
 
 #: Soft LDPE-like pillars on a short slab: cheap arrays near the paper's map at 0.1-1 m/s.
 DESIGN = PillarDesign.example(E="1 MPa", V0="1 m/s", V_s="1 mm/s", L_x="0.1 mm",

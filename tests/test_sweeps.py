@@ -7,11 +7,12 @@ import time
 import numpy as np
 import pytest
 
-from model import parallel, sweeps
-from model.fixed import orientation_sweep
-from model.params import REGIMES, Params
-from model.sweeps import SweepCancelled, SweepResult
-from model.uniform import _uniform, uniform_array
+from model.runs import parallel
+from model.runs import sweeps
+from model.arrays.fixed import orientation_sweep
+from model.contact.params import REGIMES, Params
+from model.runs.sweeps import SweepCancelled, SweepResult
+from model.arrays.uniform import _uniform, uniform_array
 
 FAST = dict(n=2, tol=1e-2)
 REGIME_MAP_COLUMNS = ["k_r", "k_theta", "FTx_over_mu0FN", "FTx_over_mu0FN_duration", "Dy_over_Dx",
@@ -214,9 +215,9 @@ def test_bad_scheduler_address():
 
 
 def test_sweep_points_come_from_the_disk_cache(tmp_path, monkeypatch):
-    from model import cache as cache_mod
-    from model import sweeps as sweeps_mod
-    from model.uniform import _uniform
+    from model.runs import cache as cache_mod
+    from model.runs import sweeps as sweeps_mod
+    from model.arrays.uniform import _uniform
 
     monkeypatch.setenv("MICROPILLAR_CACHE_DIR", str(tmp_path))
     first = sweeps_mod.regime_map(k_r=[1.0, 3.0], k_theta=[3.0], tol=1e-2)
@@ -272,7 +273,7 @@ def test_regime_map_hands_out_the_coarse_subgrid_first(tmp_path, monkeypatch):
 def test_chain_extrapolates_beta_along_the_swept_parameter():
     """Two computed points extrapolate beta linearly in the log of the one parameter that
     changes; a capped beta or a large step falls back to the nearer point's own."""
-    from model.sweeps import _extrapolate
+    from model.runs.sweeps import _extrapolate
 
     p = [Params(0.1, k, F_N=3.0) for k in (0.1, 0.2, 0.4)]
     row = lambda beta: {"beta": beta, "beta_slope": 1.5}  # noqa: E731

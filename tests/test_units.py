@@ -1,4 +1,4 @@
-"""Physical units of a pillar design (model.units): the notes' worked example by hand,
+"""Physical units of a pillar design (model.designs.units): the notes' worked example by hand,
 parsing and its errors, the round trip, regimes along the speed and height lines."""
 import math
 
@@ -6,11 +6,11 @@ import numpy as np
 import pint
 import pytest
 
-from model.distributions import Fixed, Pair
-from model.friction import mu0
-from model.design_point import evaluate, regime_intervals, speed_line
-from model.regimes import EXPLORED_MAP, MODEL_RANGE, REGIME_SPLIT, regime_of
-from model.units import BEAM_PREFACTORS, PillarDesign, ureg
+from model.designs.distributions import Fixed, Pair
+from model.contact.friction import mu0
+from model.designs.design_point import evaluate, regime_intervals, speed_line
+from model.contact.regimes import EXPLORED_MAP, MODEL_RANGE, REGIME_SPLIT, regime_of
+from model.designs.units import BEAM_PREFACTORS, PillarDesign, ureg
 
 
 def test_worked_example_by_hand():

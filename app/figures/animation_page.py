@@ -15,11 +15,11 @@ from bokeh.models import Div, Range1d
 from bokeh.resources import INLINE
 
 from model import simulate_support
-from model.array_motion import array_motion
+from model.arrays.array_motion import array_motion
 
 from .access_js import PAGE_SCRIPT
 from .array_scene import array_scene
-from model.friction import mu0
+from model.contact.friction import mu0
 
 from .histories import forces_figure, friction_law_data, friction_law_figure
 from .live_energy import energy_frames, live_energy_figure, support_frames_callback

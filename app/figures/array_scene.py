@@ -2,7 +2,7 @@
 sliding over a grid of supports, each coloured by the direction of the friction force on
 it, with the live count N_c against N_c0 and the force the drive needs, F_T,x/(mu0 F_N).
 
-``array_scene(motion, player)`` draws it from a ``model.array_motion.ArrayMotion``; all
+``array_scene(motion, player)`` draws it from a ``model.arrays.array_motion.ArrayMotion``; all
 frames go to the browser once (float32, frame-major) and a ``CustomJS`` attached to the
 browser-side player (``app.figures.player``) draws each frame: no server round trip.
 """

@@ -1,6 +1,6 @@
 """Uniform-orientation arrays: the regime map (Fig. 5a/5b) and the load curves (Fig. 6).
 
-``regime_map_figure`` draws a precomputed ``model.shipped_map.RegimeMap`` on log axes as
+``regime_map_figure`` draws a precomputed ``model.runs.shipped_map.RegimeMap`` on log axes as
 cells coloured by F_T,x/(mu0 F_N) (5a, paper or duration-weighted average) or D_y/D_x
 (5b), labels the paper's four regimes and marks the current (k_r, k_theta).
 ``load_figure`` draws F_T,x/(mu0 F_N) against F_N for the four regimes and the current
@@ -14,7 +14,7 @@ import numpy as np
 from bokeh.models import ColorBar, LinearColorMapper, Range1d, Span
 from bokeh.palettes import Cividis256, Viridis256
 
-from model.params import REGIMES
+from model.contact.params import REGIMES
 
 from ..state import K_MID
 from .common import BLACK, GREY, REGIME_COLORS, VERMILION, new_figure, source

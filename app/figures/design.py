@@ -15,8 +15,8 @@ import math
 import numpy as np
 from bokeh.models import Range1d
 
-from model.distributions import from_dict, rotated
-from model.regimes import MODEL_RANGE
+from model.designs.distributions import from_dict, rotated
+from model.contact.regimes import MODEL_RANGE
 
 from .arrays import K_AXIS, regime_map_figure
 from .common import BLACK, GREEN, ORANGE, VERMILION, source

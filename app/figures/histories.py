@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 from bokeh.models import FactorRange, Label, Range1d, Span
 
-from model.friction import mu, mu0
+from model.contact.friction import mu, mu0
 
 from .common import BLACK, BLUE, GREEN, GREY, PURPLE, VERMILION, legend_below, new_figure, source
 

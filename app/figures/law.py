@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 from bokeh.models import Range1d
 
-from model.params import DEFAULTS
+from model.contact.params import DEFAULTS
 
 from .common import BLACK, BLUE, GREY, MIN_TEXT_PX, VERMILION, new_figure, source
 

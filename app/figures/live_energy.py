@@ -16,7 +16,7 @@ import math
 import numpy as np
 from bokeh.models import CustomJS, Div, Range1d
 
-from model.friction import mu
+from model.contact.friction import mu
 
 from .common import BLACK, annotation, new_figure, source, sources
 from .histories import ENERGY_COLORS, ENERGY_LABELS, ENERGY_TERMS

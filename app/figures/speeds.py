@@ -1,9 +1,9 @@
-"""The Design tab's friction against sliding speed (``model.speed_curve``): the
+"""The Design tab's friction against sliding speed (``model.lab.speed_curve``): the
 structured surface's F_T,x/F_N at each computed speed V0 with its quadrature error as an
 error bar (hover: the integration error too), the flat material's mu(V0) of Eq. (4), and a
 measured curve of the structured sample (its ``mu_err`` as error bars); below, measured -
 predicted at the measured speeds with the combined error that decides agreement
-(``model.friction_compare``).
+(``model.lab.friction_compare``).
 
 ``speeds_data`` and ``difference_data`` give the sources (and axis extents) for new data;
 ``speeds_figure`` and ``difference_figure`` draw empty figures whose named sources a view

@@ -22,7 +22,7 @@ from bokeh.core.property.vectorization import Value
 
 from model import Params, simulate_support
 from model.controls import CONTROLS
-from model.shipped_map import SHIPPED_LOADS, load_regime_map
+from model.runs.shipped_map import SHIPPED_LOADS, load_regime_map
 
 from .. import figures as F
 from ..figures.arrays import MAP_QUANTITIES, map_data, map_title, value_range
@@ -90,7 +90,7 @@ MAP_GEOMETRY = ("k_r", "k_theta", "left", "right", "bottom", "top")
 
 
 def maps(digits: int = 6) -> dict:
-    """The shipped regime maps (Fig. 5, model/data, read by ``model.shipped_map``) as the
+    """The shipped regime maps (Fig. 5, model/data, read by ``model.runs.shipped_map``) as the
     source data of the map figure (``app.figures.arrays.map_data``): the cells once, and
     per load its columns with their value ranges (Fig. 5a: F_T,x/(mu0 F_N), paper
     average, the figure's "FTx"; Fig. 5b: D_y/D_x, "DyDx")."""

@@ -12,7 +12,7 @@ state, also in the URL fragment (``#k_r=3&k_theta=0.01&F_N=1&theta0_deg=90&tab=p
 docs/offline.md documents the page and its JavaScript API.
 
 The ranges, defaults, regimes and their titles are read here from ``model.controls``,
-``model.params.REGIMES``, ``app.texts`` and ``app.urlstate`` and handed to the page as JSON:
+``model.contact.params.REGIMES``, ``app.texts`` and ``app.urlstate`` and handed to the page as JSON:
 defined once, in Python.
 """
 from __future__ import annotations
@@ -33,8 +33,8 @@ from bokeh.models import (Button, CustomJS, CustomJSTickFormatter, Div, Select, 
 from bokeh.resources import INLINE
 
 from model.controls import CONTROLS, DEFAULT_REGIME
-from model.friction import mu0
-from model.params import REGIMES
+from model.contact.friction import mu0
+from model.contact.params import REGIMES
 
 from ..figures.arrays import AVERAGE_COLUMNS
 from ..texts import AVERAGE_NAMES, FELT_AVERAGE, MECHANISMS

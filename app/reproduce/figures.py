@@ -7,7 +7,7 @@ import numpy as np
 from bokeh.layouts import row
 from bokeh.models import GlyphRenderer
 
-from model.params import REGIMES
+from model.contact.params import REGIMES
 from model.reproduce.datasets import THETA_FIG10, rows_of
 from model.reproduce.tables import POLAR_COLUMNS
 

@@ -4,7 +4,7 @@ enter contact at the slab's leading edge and are released at their tau_out; each
 coloured by the direction of its friction force; N_c is counted live against N_c0 (so
 beta = N_c0/N_c shows) and the running F_T,x/(mu0 F_N) settles as the array does.
 
-A renderer of ``SessionResults.array`` (``model.array_motion``, computed once per
+A renderer of ``SessionResults.array`` (``model.arrays.array_motion``, computed once per
 parameter set in a worker): every frame goes to the browser once and a browser-side
 player draws them -- no server round trip per frame.
 """

@@ -4,7 +4,7 @@ is only in a picture (WCAG 1.1.1).
 ``DataTable`` is a toggle button under a tab's figures; pressed, it shows the rows of the
 tab's CSV download (the same text, read back with ``model.csvfile.read_text``) as an HTML
 table with a caption and column headers that carry units (``column_header``: the
-registered quantities' labels and units, ``model.quantities``). The table is written only
+registered quantities' labels and units, ``model.arrays.quantities``). The table is written only
 while it is shown, and again when the owner says the result changed (``refresh``).
 A long file (a trajectory, the array's frames) is shown every k-th row, first and last
 kept, and the caption says so: the download has every row.
@@ -19,7 +19,7 @@ import numpy as np
 import panel as pn
 
 from model import csvfile
-from model.quantities import QUANTITIES, format_value, label
+from model.arrays.quantities import QUANTITIES, format_value, label
 
 from .layout import BUTTON_CSS
 from .widgets import caption, look

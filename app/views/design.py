@@ -17,8 +17,8 @@ import time
 import panel as pn
 import param
 
-from model.regimes import EXPLORED_MAP
-from model.shipped_map import load_regime_map
+from model.contact.regimes import EXPLORED_MAP
+from model.runs.shipped_map import load_regime_map
 
 from .. import figures as F
 from ..figures.design import (design_map_data, design_map_figure, design_polar_data,

@@ -7,7 +7,7 @@ fit's coefficients with their 95 % intervals and warnings, and Fig. 3 in physica
 ``FrictionLawView`` reads only the state and the results: a good file sets
 ``state.friction_curve`` (``app.law_results`` fits it and sets the inputs); a bad one
 leaves everything unchanged and its note names the problem in the command line's words
-(``model.friction_curve.curve_from_text``).
+(``model.lab.friction_curve.curve_from_text``).
 """
 from __future__ import annotations
 
@@ -16,8 +16,8 @@ import math
 import panel as pn
 import param
 
-from model.friction_curve import CurveFileError, curve_from_text
-from model.units import to_si, ureg
+from model.lab.friction_curve import CurveFileError, curve_from_text
+from model.designs.units import to_si, ureg
 
 from .. import figures as F
 from ..figures.law import law_data, law_figure, set_axes

@@ -1,5 +1,5 @@
 """The Design tab's readouts: a one-sentence headline, the array's table (dimensionless and
-in physical units, every value with the error bar it carries: ``model.design_table``) and
+in physical units, every value with the error bar it carries: ``model.designs.design_table``) and
 its CSV download.
 
 While a new array is computed the table keeps the previous inputs' numbers, greyed and
@@ -15,7 +15,7 @@ import time
 import panel as pn
 import param
 
-from model.design_table import headline, rows, table_csv
+from model.designs.design_table import headline, rows, table_csv
 
 from ..results import SessionResults
 from ..state import ExplorerState

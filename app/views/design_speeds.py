@@ -8,14 +8,14 @@ error (``app.figures.speeds``).
 ``FrictionSpeedsView`` reads only the state and the results: its inputs set
 ``state.speeds_range`` and ``speeds_n``, Predict and Cancel call the results, a good file
 sets ``state.structured_curve``; a bad one leaves everything unchanged and its note names
-the problem in the command line's words (``model.friction_compare.measured_from_text``).
+the problem in the command line's words (``model.lab.friction_compare.measured_from_text``).
 """
 from __future__ import annotations
 
 import panel as pn
 import param
 
-from model.friction_compare import measured_from_text
+from model.lab.friction_compare import measured_from_text
 
 from .. import figures as F
 from ..figures.speeds import (difference_data, difference_figure, set_speed_axis, speeds_data,

@@ -11,7 +11,7 @@ import math
 import panel as pn
 import param
 
-from model.quantities import readout
+from model.arrays.quantities import readout
 
 from ..figures.arrays import AVERAGE_COLUMNS
 from ..results import SessionResults
@@ -65,7 +65,7 @@ def pinned_clause(a_fixed: float | None, a_theta0_deg: float, a_uniform: float |
             f"{_short_words(a_uniform)}; B − A = {d_fixed}, {d_uniform} (F_T,x/μ₀F_N)")
 
 
-#: The fixed array's readout: quantities of the registry (``model.quantities``), whose
+#: The fixed array's readout: quantities of the registry (``model.arrays.quantities``), whose
 #: labels and formats the rows take.
 FIXED_READOUT = ("FTx_over_mu0FN", "FTy_over_mu0FN", "Dy_over_Dx", "Nc_over_Nc0", "beta",
                  "r_max")

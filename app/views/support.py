@@ -22,7 +22,7 @@ import numpy as np
 import panel as pn
 import param
 
-from model.friction import mu0
+from model.contact.friction import mu0
 
 from .. import figures as F
 from ..figures.common import legend_above, source

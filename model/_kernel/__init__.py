@@ -1,6 +1,6 @@
 """The compiled kernel: the only place numba is used.
 
-Everything here takes plain floats and numpy arrays; ``model.support`` wraps it.
+Everything here takes plain floats and numpy arrays; ``model.contact.support`` wraps it.
 ``pack`` turns a ``Params`` into the flat array the kernel reads.
 """
 import hashlib
@@ -8,9 +8,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..friction import series_coefficients
-from .batch import DERIVED, integrate_batch
+from ..contact.friction import series_coefficients
 from . import slots
+from .batch import DERIVED, integrate_batch
 from .driver import DOP853_RTOL, integrate
 from .record import MAX_NODES, N_NODE_COLS, N_REC, REC_SLOTS
 from .rhs import FN, N_PARAM, REG, TH0, X0, jacobian, mu_over_s, rhs
@@ -88,7 +88,7 @@ def warmup() -> float:
     """
     import time
 
-    from ..params import REGIMES
+    from ..contact.params import REGIMES
 
     start = time.perf_counter()
     params = REGIMES["soft"]

@@ -17,7 +17,7 @@ DERIVED = ("F_x", "F_y", "U_el", "K", "energy_residual", "dtheta_rms", "dr_rms",
 def derived(y, t, P, out):
     """Eqs. (8), (12), (13) at the exit: mean friction over f_N, energies, residual, rms.
 
-    U_el is the potential energy of ``model.energy.elastic_energy`` (relative to the
+    U_el is the potential energy of ``model.contact.energy.elastic_energy`` (relative to the
     initial state); the tests check the two agree.
     """
     x, yy, vx, vy, th = y[X], y[Y], y[VX], y[VY], y[THETA]

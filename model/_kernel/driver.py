@@ -122,7 +122,7 @@ def integrate(y0, P, rtol, atol, method, max_steps, tau_max, record, high):
     steps by DOP853 when ``high`` (``use_dop853(rtol)``), else by Dormand-Prince 5(4).
 
     Returns (status, t, y, stats, r_min, r_max, nodes, n_nodes); status codes are those
-    named in ``slots`` (``model.results.Status``); r_min and r_max are the extremes of the
+    named in ``slots`` (``model.contact.results.Status``); r_min and r_max are the extremes of the
     distance r from the pivot over the contact (at the accepted steps and the turning
     points of r inside them, ``event.r_inside``). ``nodes`` rows are (tau, the ``REC_SLOTS`` of the
     state, and their tau-derivatives) when ``record`` is set: at the accepted steps and

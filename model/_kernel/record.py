@@ -7,7 +7,7 @@ stages are computed only for recording runs); the shorter Dormand-Prince 5(4) st
 give nodes at their ends only (candidate numbers n * N_SUB). The 8th-order steps are long
 (about half as many as the Dormand-Prince 5(4) steps at equal rtol): cubic Hermite
 sampling between their ends
-alone would lose about two digits of the series (``model.support._series_from_nodes``);
+alone would lose about two digits of the series (``model.contact.support._series_from_nodes``);
 with the inner nodes the spacing is shorter than the old steps and the sampled series are
 at least as accurate as before (``tests/test_series.py``). The recorded run takes exactly
 the steps of the unrecorded one, so its exit state is the same.

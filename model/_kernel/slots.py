@@ -16,7 +16,7 @@ never feed back into the motion, so their error follows the motion's; the energy
 residual W - (D_x + D_y + U_el + K) of every result measures it (as CVODES does with
 quadrature error control switched off).
 
-Status codes are plain ints for numba; ``model.results.Status`` gives each its
+Status codes are plain ints for numba; ``model.contact.results.Status`` gives each its
 message and remedy.
 """
 X, Y, VX, VY, THETA, W, I_Y, D_X, D_Y, S_TH, S_R, TAU = range(12)

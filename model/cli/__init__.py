@@ -33,11 +33,11 @@ import math
 import os
 import sys
 
-from ..friction import mu0
-from ..options import METHODS, SolverOptions
-from ..params import Params
-from ..quantities import describe
-from ..support import simulate_support
+from ..arrays.quantities import describe
+from ..contact.friction import mu0
+from ..contact.options import METHODS, SolverOptions
+from ..contact.params import Params
+from ..contact.support import simulate_support
 from importlib.metadata import entry_points
 
 from . import array, design, friction, reproduce, snippet, sweep

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..params import REGIMES
+from ..contact.params import REGIMES
 
 #: How the user called the command line: its usage lines and errors repeat it.
 PROG = "micropillar" if Path(sys.argv[0]).name == "micropillar" else "python -m model"
@@ -90,7 +90,7 @@ def add_stiffness(group) -> None:
 
 def add_atol_method(group) -> None:
     """``--atol`` and ``--method``, shared by the array commands."""
-    from ..options import METHODS
+    from ..contact.options import METHODS
 
     group.add_argument("--atol", type=real, metavar="A",
                        help="absolute tolerance (default rtol/100)")

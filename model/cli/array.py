@@ -4,9 +4,9 @@ from __future__ import annotations
 import json
 import math
 
-from ..fixed import fixed_orientation
-from ..params import Params
-from ..uniform import uniform_array
+from ..arrays.fixed import fixed_orientation
+from ..arrays.uniform import uniform_array
+from ..contact.params import Params
 from . import orientations
 from ._common import (UsageError, add_atol_method, add_stiffness, as_usage_error, beta_value,
                       jsonable, real, stiffness, table)

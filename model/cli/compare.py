@@ -1,6 +1,6 @@
 """``micropillar pillar ... --compare structured.csv``: the structured surface's friction
 predicted at the speeds of a measured curve and compared with it
-(``model.friction_compare``): each speed's measured and predicted value, their difference
+(``model.lab.friction_compare``): each speed's measured and predicted value, their difference
 and the combined error, the RMS, and the speeds where they disagree."""
 from __future__ import annotations
 
@@ -8,8 +8,8 @@ import json
 import math
 import sys
 
-from ..friction_compare import DEFAULT_MU_ERR, N_SIGMA, compare_friction, read_measured
-from ..friction_curve import CurveFileError, speed_factor
+from ..lab.friction_compare import DEFAULT_MU_ERR, N_SIGMA, compare_friction, read_measured
+from ..lab.friction_curve import CurveFileError, speed_factor
 from . import speeds
 from ._common import UsageError, jsonable, real
 

@@ -3,10 +3,10 @@
 Searches a family (fixed, pair, vonmises, mixture) for the smallest F_T,x/(mu0 F_N)
 under a bound on |F_T,y|/(mu0 F_N) (``--objective min-FTx``), or the largest
 |F_T,y|/(mu0 F_N) under a bound on F_T,x/(mu0 F_N) (``--objective max-FTy``), and
-compares it with the uniform array (``model.design.optimise``).
+compares it with the uniform array (``model.designs.design.optimise``).
 
 ``python -m model pillar`` (registered with ``design``): a real pillar array in physical
-units (``model.units``): its dimensionless point, regime and, with ``--evaluate``, its
+units (``model.designs.units``): its dimensionless point, regime and, with ``--evaluate``, its
 array's drive force, power, contact time and excursion.
 """
 from __future__ import annotations
@@ -15,9 +15,9 @@ import json
 import math
 import re
 
-from ..design import FAMILIES, OBJECTIVES, OptimisationCancelled, optimise
-from ..design_table import headline, rows as design_rows
-from ..params import DEFAULTS, Params
+from ..contact.params import DEFAULTS, Params
+from ..designs.design import FAMILIES, OBJECTIVES, OptimisationCancelled, optimise
+from ..designs.design_table import headline, rows as design_rows
 from .sweep import POINT_BYTES
 from ._common import (FIELD_FLAGS, UsageError, add_stiffness, beta_value, check_memory,
                       jsonable, real, stiffness, table, whole)
@@ -179,7 +179,7 @@ def add_pillar_command(commands) -> None:
 
 
 def _pillar_design(args):
-    from ..units import BEAM_PREFACTORS, PillarDesign
+    from ..designs.units import BEAM_PREFACTORS, PillarDesign
 
     values = {name: getattr(args, f"pillar_{name}") for name in _PILLAR.values()}
     missing = [flag for flag, name in _PILLAR.items()
@@ -208,7 +208,7 @@ _LAW_FLAGS = ("--mu-s", "--A", "--B", "--V-s")
 def _friction_fields(path: str, given: dict) -> dict:
     """The ``PillarDesign`` friction inputs from the JSON file ``path``; ``UsageError``
     naming --friction for a file that cannot be read or a law flag given as well."""
-    from ..friction_law import FrictionLaw
+    from ..lab.friction_law import FrictionLaw
 
     both = [flag for flag in _LAW_FLAGS if _PILLAR[flag] in given]
     if both:
@@ -222,7 +222,7 @@ def _friction_fields(path: str, given: dict) -> dict:
 
 def _distribution(args):
     """The orientation distribution of --orientation and its flags (None: uniform)."""
-    from ..distributions import Fixed
+    from ..designs.distributions import Fixed
     from . import orientations
 
     if args.orientation in orientations.ORIENTATIONS:
@@ -235,7 +235,7 @@ def _distribution(args):
 def run_pillar(args) -> int:
     """``pillar``: where a real design sits; with --evaluate its array in physical units;
     with --speeds its friction against sliding speed."""
-    from ..design_point import evaluate, model_point, regime_intervals
+    from ..designs.design_point import evaluate, model_point, regime_intervals
     from . import compare, speeds
 
     compare.check(args)

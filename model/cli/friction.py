@@ -1,7 +1,7 @@
 """``micropillar friction fit FILE.csv``: fit the friction law of Eq. (4) to a measured
-curve (friction coefficient against sliding speed; ``model.friction_curve`` says the
+curve (friction coefficient against sliding speed; ``model.lab.friction_curve`` says the
 file's form), reporting mu_s, A, B and V_s with 95 % intervals, their correlations, the
-residual and warnings for coefficients the data do not determine (``model.friction_fit``).
+residual and warnings for coefficients the data do not determine (``model.lab.friction_fit``).
 ``--out fit.json`` writes the law that ``micropillar pillar --friction fit.json`` uses.
 """
 from __future__ import annotations
@@ -10,8 +10,8 @@ import json
 import math
 
 from ..files import write_text_atomic
-from ..friction_curve import CurveFileError, read_curve, speed_factor
-from ..friction_fit import fit_friction
+from ..lab.friction_curve import CurveFileError, read_curve, speed_factor
+from ..lab.friction_fit import fit_friction
 from ._common import UsageError, jsonable, output_file, table
 
 _MEANING = {"mu_s": "static friction coefficient", "A": "shape A", "B": "shape B",

@@ -1,5 +1,5 @@
 """``python -m model array --orientation pair|vonmises|mixture|csv``: arrays whose
-orientations follow a distribution (``model.distributions``), p-weighted as in Eq. (10).
+orientations follow a distribution (``model.designs.distributions``), p-weighted as in Eq. (10).
 
 Flags: ``--theta0`` (pair, radians), ``--mean-deg`` and ``--kappa`` (von Mises),
 ``--component FAMILY[:key=value,...]`` (repeated) with ``--weights w1,w2,...`` (mixture),
@@ -11,10 +11,10 @@ import json
 import math
 import re
 
-from ..distribution_array import distribution_array
-from ..distribution_result import error_words
-from ..distributions import Histogram, Mixture, Pair, VonMises, from_dict, rotated
-from ..params import Params
+from ..contact.params import Params
+from ..designs.distribution_array import distribution_array
+from ..designs.distribution_result import error_words
+from ..designs.distributions import Histogram, Mixture, Pair, VonMises, from_dict, rotated
 from ._common import FIELD_FLAGS, UsageError, jsonable, real, stiffness, table
 
 ORIENTATIONS = ("pair", "vonmises", "mixture", "csv")

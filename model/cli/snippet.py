@@ -17,7 +17,7 @@ from dataclasses import fields
 
 import numpy as np
 
-from ..params import Params
+from ..contact.params import Params
 
 __all__ = ["add_flag", "snippet_of", "print_snippet", "source", "params_source"]
 

@@ -1,5 +1,5 @@
 """``micropillar pillar ... --speeds 0.1mm/s..1m/s --n 30``: the structured surface's
-friction against sliding speed beside the flat material's mu(V0) (``model.speed_curve``),
+friction against sliding speed beside the flat material's mu(V0) (``model.lab.speed_curve``),
 each row printed as its speed finishes."""
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import json
 import math
 import sys
 
-from ..speed_curve import check_own_V_s, friction_velocity, parse_speeds, speed_range
+from ..lab.speed_curve import check_own_V_s, friction_velocity, parse_speeds, speed_range
 from ._common import UsageError, fmt, jsonable, whole
 
 #: Default number of speeds of --speeds.

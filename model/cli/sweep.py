@@ -15,8 +15,8 @@ import inspect
 import sys
 import time
 
-from ..params import REGIMES, Params
-from ..sweeps import SweepCancelled, load_sweep, orientation_table, regime_map, stiffness_sweep
+from ..contact.params import REGIMES, Params
+from ..runs.sweeps import SweepCancelled, load_sweep, orientation_table, regime_map, stiffness_sweep
 from ._common import (PROG, UsageError, add_atol_method, as_usage_error, beta_value,
                       check_memory, flag_of, output_file, real, whole)
 

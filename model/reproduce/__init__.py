@@ -4,7 +4,7 @@
 Figs. 3, 5a/b, 6, 7a/b, 8a/b, 10a-f and 11a-c and writes into ``out``:
 
 * ``figN.csv`` -- each figure's data, with the parameters and solver settings in a
-  ``# key: value`` header (``model.sweeps.read_csv`` reads it back);
+  ``# key: value`` header (``model.runs.sweeps.read_csv`` reads it back);
 * ``report.md`` and ``index.html`` -- the findings of the paper (docs/model.md, "What the
   paper reports", 1-7) against
   the computed numbers with their error estimates, where the model differs, and how
@@ -23,7 +23,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..sweeps import SweepResult
+from ..runs.sweeps import SweepResult
 from . import findings, report, sensitivity
 from .datasets import RESOLUTIONS, Data, Resolution, compute, stages
 from .tables import FIGURES, FigureSpec

@@ -1,6 +1,6 @@
 """The computations behind the paper's figures, at a chosen resolution.
 
-Every uniform-array point goes through the sweeps of ``model.sweeps`` and so through the
+Every uniform-array point goes through the sweeps of ``model.runs.sweeps`` and so through the
 on-disk cache: a second reproduction at the same resolution reads its points back.
 """
 from __future__ import annotations
@@ -11,11 +11,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..params import REGIMES, Params
-from ..shipped_map import RegimeMap, _from_sweep, grid
-from ..support import simulate_support
-from ..sweeps import SweepResult, load_sweep, orientation_table, regime_map, stiffness_sweep
-from ..uniform import uniform_array
+from ..arrays.uniform import uniform_array
+from ..contact.params import REGIMES, Params
+from ..contact.support import simulate_support
+from ..runs.shipped_map import RegimeMap, _from_sweep, grid
+from ..runs.sweeps import SweepResult, load_sweep, orientation_table, regime_map, stiffness_sweep
 
 #: theta0 of the single supports of Fig. 10a-e (the paper's three orientations).
 THETA_FIG10 = {"θ₀ = π/4": math.pi / 4, "θ₀ = π/2": math.pi / 2, "θ₀ = 3π/4": 3 * math.pi / 4}

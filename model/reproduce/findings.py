@@ -12,8 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..friction import mu0
-from ..params import REGIMES
+from ..contact.friction import mu0
+from ..contact.params import REGIMES
 from .datasets import THETA_FIG10, Data, rows_of
 
 UNIFORM = "uniform arrays, self-consistent β, paper average (Eq. 10), F_N = 1"

@@ -6,8 +6,8 @@ import html
 import platform
 from pathlib import Path
 
+from ..contact.params import REGIMES
 from ..files import write_text_atomic
-from ..params import REGIMES
 
 
 def _md_table(header: list, rows: list) -> list:

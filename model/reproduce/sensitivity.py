@@ -13,10 +13,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..fixed import orientation_sweep
-from ..friction import mu0
-from ..params import REGIMES
-from ..uniform import uniform_array
+from ..arrays.fixed import orientation_sweep
+from ..arrays.uniform import uniform_array
+from ..contact.friction import mu0
+from ..contact.params import REGIMES
 
 LAMBDAS = (0.025, 0.1)
 N_RANDOM = 200

@@ -8,9 +8,9 @@ from typing import Callable
 
 import numpy as np
 
-from ..friction import mu
-from ..params import DEFAULTS
-from ..quantities import MAP_FIGURES, POLAR_FIGURES, label
+from ..arrays.quantities import MAP_FIGURES, POLAR_FIGURES, label
+from ..contact.friction import mu
+from ..contact.params import DEFAULTS
 from .datasets import THETA_FIG10, Data, rows_of
 
 UNIFORM = {"beta": "self-consistent", "average": "paper (Eq. 10)", "F_N": 1.0}

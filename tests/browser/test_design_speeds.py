@@ -14,7 +14,7 @@ from . import page_tools as pt
 pytestmark = [pytest.mark.browser, pytest.mark.timeout(300)]
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-#: The structured example's pillars (``model.friction_example.STRUCTURED_DESIGN``).
+#: The structured example's pillars (``model.lab.friction_example.STRUCTURED_DESIGN``).
 QUERY = "?tab=design&d_E=1%20MPa&d_Lx=0.1%20mm&d_FN=10%20uN&d_V0=1%20m/s"
 N_SPEEDS = 5
 

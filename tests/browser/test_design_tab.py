@@ -11,9 +11,9 @@ from pathlib import Path
 
 import pytest
 
-from model.friction_curve import read_curve
-from model.friction_fit import fit_friction
-from model.units import PillarDesign
+from model.lab.friction_curve import read_curve
+from model.lab.friction_fit import fit_friction
+from model.designs.units import PillarDesign
 
 from . import page_tools as pt
 

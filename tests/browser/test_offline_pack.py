@@ -11,7 +11,7 @@ from app.offline.pack import write
 from app.worker import UNIFORM_TOL, compute_support, compute_uniform
 from model import Params
 from model.controls import CONTROLS
-from model.friction import mu0
+from model.contact.friction import mu0
 
 from .serving import VIEWPORT
 
@@ -240,7 +240,7 @@ def test_polar_diagrams_are_computed_in_the_page(offline):
     assert len(curve["value"]) == 2 * 72 + 1
     # Orientations of the sweep against Python's fixed arrays there, each at its
     # self-consistent beta (the dashboard's default).
-    from model.fixed import orientation_sweep
+    from model.arrays.fixed import orientation_sweep
     from app.worker import POLAR_THETA0
     p = Params(k_r=0.03, k_theta=0.3, F_N=1)
     sweep = orientation_sweep(p, POLAR_THETA0[[0, 40]], beta="self")
@@ -258,7 +258,7 @@ def test_polar_diagrams_are_computed_in_the_page(offline):
 
 def test_the_regime_map_is_the_shipped_one_and_sets_the_springs(offline):
     offline.open("#F_N=3&tab=map")
-    from model.shipped_map import load_regime_map
+    from model.runs.shipped_map import load_regime_map
     m = load_regime_map(F_N=3)
     cells = offline.data("regime_map")
     assert cells["value"][:24] == pytest.approx(list(m.FTx_over_mu0FN[0]), rel=1e-5)

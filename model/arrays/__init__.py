@@ -1,0 +1,1 @@
+"""Arrays of supports under the slab and their averages: many contacts at once, fixed and uniform orientations, the self-consistent load factor, the quadrature and the registry of the quantities they report."""

@@ -1,0 +1,1 @@
+"""One support and its contact with the slab: parameters, solver settings, the friction law of Eq. (4), ``simulate_support`` and its results, energies, the scipy reference and where a point lies on the paper's map."""
