@@ -8,9 +8,13 @@
  *   explorer.state   -> the current state {k_r, k_theta, F_N, theta0_deg, beta_mode, beta, tab, ...};
  *   explorer.set({k_r: 0.5, ...}) -> change the state (as the sliders do) and redraw;
  *   explorer.preset("slider") -> a regime's springs;
- *   explorer.result  -> the last drawn result; explorer.drawn counts the redraws;
+ *   explorer.result  -> the last drawn result; explorer.drawn counts the redraws (texts
+ *       included: they follow the support's figures after the paint, paint.js);
+ *   explorer.keyToSupportMs -> for the last key presses that changed the state: ms from
+ *       the key press to the first animation frame after the support's figures changed;
  *   explorer.ready   -> a Promise resolved at the first drawn plot;
- *   explorer.polar   -> the last orientation sweep drawn (Fig. 11), explorer.polarDrawn;
+ *   explorer.polar   -> the last orientation sweep drawn (Fig. 11; its ``key`` as the
+ *       uniform array's), explorer.polarDrawn;
  *   explorer.uniform -> the last uniform array drawn (its ``key``: k_r,k_theta,F_N,beta),
  *       explorer.uniformDrawn.
  * Reads its configuration (ranges, defaults, regimes: from the Python model at pack time)
@@ -47,6 +51,13 @@
   function source(name) { return find(name, isSource); }
   function figure(name) { return find(name, isFigure); }
   function setData(map) { Object.keys(map).forEach(function (k) { source(k).data = map[k]; }); }
+  // Texts and the other views follow the support's figures after the paint (paint.js);
+  // held while a newer contact is being computed.
+  var PAINT = window.MicropillarPaint, later = new PAINT.Later(function () {
+    return !!(contactChannel.inFlight || contactChannel.pending);
+  }), keyClock = new PAINT.KeyClock(window);
+  /** A Div's new text, written after the paint (the newest text for a Div wins). */
+  function setText(name, text) { later.put(name, function () { model(name).text = text; }); }
   function esc(text) {
     return String(text).replace(/[&<>"]/g, function (c) {
       return {"&": "&amp;", "<": "&lt;", ">": "&gt;", "\"": "&quot;"}[c];
@@ -69,8 +80,7 @@
     applyProjector();
   }
   function showNotice(notices) {
-    model("notice").text = notices.length
-      ? "<b>Link:</b> " + notices.map(esc).join("; ") : "";
+    setText("notice", notices.length ? "<b>Link:</b> " + notices.map(esc).join("; ") : "");
   }
 
   // ------------------------------------------------------------ computing
@@ -78,15 +88,17 @@
   // (the Support tab, the headline), the orientation sweep (Fig. 11) and the uniform array
   // (the headline's average over all orientations), so neither array delays the support.
   var Channel = window.MicropillarJobs.Channel;
+  var statusTimer = null;  // "computing…" only for a contact that takes a while
   var contactChannel = new Channel("contact", drawSupport, function (on) {
-    if (on) model("status").text = "computing…";
+    clearTimeout(statusTimer);
+    if (on) statusTimer = setTimeout(function () { model("status").text = "computing…"; }, 200);
   });
   var sweepChannel = new Channel("sweep", drawPolar, function (on) {
-    if (on) model("polar-status").text = "computing the 72 orientations in the page…";
+    if (on) setText("polar-status", "computing the 72 orientations in the page…");
   });
 
   var uniformChannel = new Channel("uniform", drawUniform, function (on) {
-    if (on) model("uniform-readout").text = "<i>uniform array: computing in the page…</i>";
+    if (on) setText("uniform-readout", "<i>uniform array: computing in the page…</i>");
   });
 
   function arrayBeta(s) { return s.beta_mode === "fixed" ? s.beta : "self"; }
@@ -109,16 +121,20 @@
   var readyResolve;
   var explorer = {
     ready: new Promise(function (resolve) { readyResolve = resolve; }),
-    drawn: 0, result: null, polar: null, polarDrawn: 0, uniform: null, uniformDrawn: 0
+    drawn: 0, result: null, polar: null, polarDrawn: 0, uniform: null, uniformDrawn: 0,
+    keyToSupportMs: keyClock.times
   };
 
   function range(fig, which, lohi) { fig[which].setv({start: lohi[0], end: lohi[1]}); }
 
   function drawSupport(r, ms) {
     if (r.error) {
-      model("headline").text = "";
-      model("headline-number").text = "";
-      model("status").text = "<b>Not computed:</b> " + esc(r.error);
+      later.put("headline", function () {
+        model("headline").text = "";
+        model("headline-number").text = "";
+      });
+      setText("status", "<b>Not computed:</b> " + esc(r.error));
+      later.put("drawn", countDrawn);
       return;
     }
     var s = r.series, p = r.params;
@@ -133,23 +149,29 @@
     range(figure("energy_live"), "y_range", energies.range);
     var frames = VIEWS.supportFrames(s, p, CONFIG);
     source("support_player_times").data = {t: frames.support_frames.tau};
-    var i = Math.min(model("support_player_frame").value, CONFIG.n_frames - 1);
-    model("support_player_readout").text = "frame " + (i + 1) + " / " + CONFIG.n_frames + " · τ = " +
-      frames.support_frames.tau[i].toFixed(2);
     // New data redraw the current frame (the player's callbacks follow these sources).
     source("energy_live_frames").data = energies.frames;
     source("support_frames").data = frames.support_frames;
     source("support_frame_params").data = frames.support_frame_params;
+    keyClock.drawn();
     explorer.result = r;
-    writeHeadline();
-    model("status").text = "one contact: τ_out = " + r.t_out.toPrecision(4) + " r₀/V₀, " +
+    // After the paint: the texts (each lays its root out again) and the polar marker.
+    var i = Math.min(model("support_player_frame").value, CONFIG.n_frames - 1);
+    setText("support_player_readout", "frame " + (i + 1) + " / " + CONFIG.n_frames + " · τ = " +
+      frames.support_frames.tau[i].toFixed(2));
+    later.put("headline", writeHeadline);
+    setText("status", "one contact: τ_out = " + r.t_out.toPrecision(4) + " r₀/V₀, " +
       r.stats.n_steps + " steps, computed in " + ms + " ms in the browser" +
-      (r.success ? "" : " — <b>" + esc(r.message) + "</b>");
-    explorer.result = r;
-    markPolar();
+      (r.success ? "" : " — <b>" + esc(r.message) + "</b>"));
+    later.put("polar-now", markPolar);
+    later.put("drawn", countDrawn);
+  }
+
+  /** explorer.drawn and data-drawn count a contact's drawing, texts included. */
+  function countDrawn() {
     explorer.drawn += 1;
     document.documentElement.setAttribute("data-drawn", String(explorer.drawn));
-    if (explorer.drawn === 1) { readyResolve(r); autoplay(); }
+    if (explorer.drawn === 1) { readyResolve(explorer.result); autoplay(); }
   }
 
   function betaWords(beta, note) {
@@ -206,13 +228,15 @@
         u.stats.trajectories + " contacts, computed in " + ms + " ms in the browser" +
         (u.message !== "ok" ? " — " + esc(u.message) : "");
     }
-    model("uniform-readout").text = tableHtml(VIEWS.uniformMarkdown(
+    setText("uniform-readout", tableHtml(VIEWS.uniformMarkdown(
       row, CONFIG.felt_average, CONFIG.uniform_failed_note, CONFIG.average_names,
       CONFIG.average_columns, CONFIG.felt_average)) +
-      "<div style='font-size:0.85em;color:#555555'>" + extra + "</div>";
-    writeHeadline();
-    explorer.uniformDrawn += 1;
-    document.documentElement.setAttribute("data-uniform", String(explorer.uniformDrawn));
+      "<div style='font-size:0.85em;color:#555555'>" + extra + "</div>");
+    later.put("headline", writeHeadline);
+    later.put("uniform-drawn", function () {
+      explorer.uniformDrawn += 1;
+      document.documentElement.setAttribute("data-uniform", String(explorer.uniformDrawn));
+    });
   }
 
   function reducedMotion() {
@@ -221,7 +245,8 @@
   function autoplay() {  // play=1 in the link, unless the reader asked for reduced motion
     if (!state.play) return;
     if (reducedMotion()) {
-      model("support_player_readout").text += " · autoplay off (reduced motion)";
+      var readout = model("support_player_readout");
+      readout.text += " · autoplay off (reduced motion)";
       return;
     }
     model("support_player_play").active = true;
@@ -238,20 +263,23 @@
     });
   }
 
-  function drawPolar(sweep, ms) {
-    if (sweep.error) { model("polar-status").text = "<b>Not computed:</b> " + esc(sweep.error); return; }
+  function drawPolar(sweep, ms, input) {
+    if (sweep.error) { setText("polar-status", "<b>Not computed:</b> " + esc(sweep.error)); return; }
     Object.keys(CONFIG.polar).forEach(function (key) {
       var res = VIEWS.polarData(key, CONFIG.polar[key][2], sweep.theta0, polarValues(sweep, key));
       polarAxes[key] = res[1];
       setData(res[0]);
     });
     var failed = sweep.success.filter(function (ok) { return !ok; }).length;
-    model("polar-status").text = sweep.theta0.length + " orientations computed in " + ms +
-      " ms in the browser" + (failed ? "; <b>" + failed + " contacts did not finish</b>" : "");
-    explorer.polar = sweep;
+    setText("polar-status", sweep.theta0.length + " orientations computed in " + ms +
+      " ms in the browser" + (failed ? "; <b>" + failed + " contacts did not finish</b>" : ""));
+    explorer.polar = Object.assign({}, sweep, {key: [input.base.k_r, input.base.k_theta,
+                                                     input.base.F_N, input.beta].join(",")});
     markPolar();
-    explorer.polarDrawn += 1;
-    document.documentElement.setAttribute("data-polar", String(explorer.polarDrawn));
+    later.put("polar-drawn", function () {
+      explorer.polarDrawn += 1;
+      document.documentElement.setAttribute("data-polar", String(explorer.polarDrawn));
+    });
   }
 
   function markPolar() {  // the current theta0 and its values (this contact's)
@@ -274,21 +302,28 @@
   }
   function loadLabel(L) { return KERNEL.formatG(L); }
 
-  function drawMap() {
+  var mapShown = null, mapNow = null;  // what the map shows: load/quantity, the springs
+  function drawMap() {  // new data only for a new load, quantity or springs
     var load = nearestLoad(state.F_N), m = CONFIG.maps.loads[loadLabel(load)];
-    var data = Object.assign({}, CONFIG.maps.cells, m.columns);
-    data.value = m.columns[CONFIG.maps.value[mapQuantity]];
-    source("regime_map").data = data;
-    var lohi = m.range[mapQuantity];
-    model("regime_map_colors").setv({low: lohi[0], high: lohi[1]});
-    figure("regime_map").title.text = m.titles[mapQuantity];  // app.figures.arrays.map_title
+    if (mapShown !== loadLabel(load) + "/" + mapQuantity) {
+      var data = Object.assign({}, CONFIG.maps.cells, m.columns);
+      data.value = m.columns[CONFIG.maps.value[mapQuantity]];
+      source("regime_map").data = data;
+      var lohi = m.range[mapQuantity];
+      model("regime_map_colors").setv({low: lohi[0], high: lohi[1]});
+      figure("regime_map").title.text = m.titles[mapQuantity];  // app.figures.arrays.map_title
+      mapShown = loadLabel(load) + "/" + mapQuantity;
+    }
     model("map-note").text = "Uniform arrays (θ₀ uniform), self-consistent β, shipped with the " +
       "model at F_N = " + CONFIG.shipped_loads.map(loadLabel).join(", ") + ". Shown: F_N = " +
       loadLabel(load) + (Math.abs(load - state.F_N) > 1e-12 * load
         ? ", the shipped load nearest to the current F_N = " + KERNEL.formatG(state.F_N, 3) : "") +
       ". Click the map, or use the arrow keys on this tab (← → k_r, ↑ ↓ k_θ, one cell), " +
       "to set the springs.";
-    source("regime_now").data = {k_r: [state.k_r], k_theta: [state.k_theta]};
+    if (mapNow !== state.k_r + "," + state.k_theta) {
+      source("regime_now").data = {k_r: [state.k_r], k_theta: [state.k_theta]};
+      mapNow = state.k_r + "," + state.k_theta;
+    }
     document.documentElement.setAttribute("data-map", loadLabel(load) + "/" + mapQuantity);
   }
 
@@ -307,13 +342,14 @@
   // ------------------------------------------------------------ the API
   var lastArrays = null;
   function compute() {
+    keyClock.take();  // the key press (if any) whose redraw is timed
     contactChannel.request(contactInput(state));
     if (arraysKey(state) !== lastArrays) {
       lastArrays = arraysKey(state);
       sweepChannel.request(sweepInput(state));
       uniformChannel.request(uniformInput(state));
     }
-    drawMap();
+    later.put("map", drawMap);
   }
 
   function setState(partial, fromControl) {
@@ -337,7 +373,8 @@
       if (!inRange(k, v)) throw new RangeError(k + "=" + v + " is not " + CONTROLS[k].expected);
       if (state[k] !== v) { state[k] = v; changed = true; }
     });
-    history.replaceState(null, "", fragment(state));
+    var link = fragment(state);
+    later.put("link", function () { history.replaceState(null, "", link); });
     if (!fromControl) syncControls();
     if (changed) compute();
   }
