@@ -172,6 +172,15 @@ def _map_titles() -> dict:
     return {q: t for q, (_, t) in MAP_QUANTITIES.items()}
 
 
+def _later_tab(child, title: str, key: str) -> TabPanel:
+    """A tab drawn when first shown: its panel holds a placeholder and, in its ``tags``, the
+    panel with ``child`` that the page puts in its place (page.js, ``showTab``). Hidden
+    tabs are neither built nor laid out while the page opens."""
+    content = TabPanel(child=child, title=title, name=f"tab-{key}")
+    placeholder = Div(text="<i>drawing…</i>", name=f"tab-{key}-placeholder")
+    return TabPanel(child=placeholder, title=title, name=f"tab-{key}-later", tags=[content])
+
+
 def _layout(cfg: dict, figs: dict, polar: dict, regime_map):
     controls = cfg["controls"]
     sliders = [_slider(key, title, controls[key]) for _, key, title, _ in _SLIDERS]
@@ -207,10 +216,8 @@ def _layout(cfg: dict, figs: dict, polar: dict, regime_map):
                    *sliders[:4], beta_mode, sliders[4], status, projector, missing],
                   sizing_mode="stretch_width", name="side")
     tabs = Tabs(tabs=[TabPanel(child=_support_tab(figs), title="Support", name="tab-support"),
-                      TabPanel(child=_polar_tab(polar), title="Polar (Fig. 11)",
-                               name="tab-polar"),
-                      TabPanel(child=_map_tab(regime_map), title="Regime map (Fig. 5)",
-                               name="tab-map")],
+                      _later_tab(_polar_tab(polar), "Polar (Fig. 11)", "polar"),
+                      _later_tab(_map_tab(regime_map), "Regime map (Fig. 5)", "map")],
                 name="tabs", sizing_mode="stretch_width", min_width=300)
     tabs.js_on_change("active", CustomJS(
         code="if (window.explorer) window.explorer._tab(cb_obj.active);"))

@@ -13,6 +13,7 @@
  *   explorer.keyToSupportMs -> for the last key presses that changed the state: ms from
  *       the key press to the first animation frame after the support's figures changed;
  *   explorer.ready   -> a Promise resolved at the first drawn plot;
+ *   explorer.pending() -> true while the support's contact is computed or drawn;
  *   explorer.polar   -> the last orientation sweep drawn (Fig. 11; its ``key`` as the
  *       uniform array's), explorer.polarDrawn;
  *   explorer.uniform -> the last uniform array drawn (its ``key``: k_r,k_theta,F_N,beta),
@@ -73,11 +74,19 @@
         if (Math.abs(slider.value - v) > 1e-12) slider.value = v;
       });
       var tab = Math.max(0, CONFIG.offline_tabs.indexOf(state.tab));
+      showTab(tab);
       if (model("tabs").active !== tab) model("tabs").active = tab;
       if (model("projector").active !== state.projector) model("projector").active = state.projector;
       if (model("beta-mode").value !== state.beta_mode) model("beta-mode").value = state.beta_mode;
     } finally { syncing = false; }
     applyProjector();
+  }
+  /** A tab's figures are built when it is first shown (pack.py's ``_later_tab``): its
+   * placeholder panel is replaced by the panel in its tags. */
+  function showTab(index) {
+    var tabs = model("tabs"), panel = tabs.tabs[index], content = panel.tags && panel.tags[0];
+    if (!content || !content.child) return;
+    tabs.tabs = tabs.tabs.map(function (p, k) { return k === index ? content : p; });
   }
   function showNotice(notices) {
     setText("notice", notices.length ? "<b>Link:</b> " + notices.map(esc).join("; ") : "");
@@ -172,6 +181,7 @@
     explorer.drawn += 1;
     document.documentElement.setAttribute("data-drawn", String(explorer.drawn));
     if (explorer.drawn === 1) { readyResolve(explorer.result); autoplay(); }
+    requestArrays();
   }
 
   function betaWords(beta, note) {
@@ -328,8 +338,11 @@
   }
 
   // ------------------------------------------------------------ projector mode
+  var projectorShown = false;  // the look the page was packed with: the screen's
   function applyProjector() {
     var on = state.projector;
+    if (on === projectorShown) return;  // (setting the same styles again repaints all)
+    projectorShown = on;
     CONFIG.projector.forEach(function (c) {
       var m = doc.get_model_by_id(c[0]), attrs = {};
       if (!m) return;
@@ -340,16 +353,23 @@
   }
 
   // ------------------------------------------------------------ the API
-  var lastArrays = null;
+  var lastArrays = null, arraysDue = false;
   function compute() {
     keyClock.take();  // the key press (if any) whose redraw is timed
     contactChannel.request(contactInput(state));
     if (arraysKey(state) !== lastArrays) {
       lastArrays = arraysKey(state);
-      sweepChannel.request(sweepInput(state));
-      uniformChannel.request(uniformInput(state));
+      arraysDue = true;  // requested once the support is drawn (countDrawn)
     }
     later.put("map", drawMap);
+  }
+  /** The orientation sweep and the uniform array for the current state, after the
+   * support's contact is drawn: on a small machine their workers would slow it down. */
+  function requestArrays() {
+    if (!arraysDue) return;
+    arraysDue = false;
+    sweepChannel.request(sweepInput(state));
+    uniformChannel.request(uniformInput(state));
   }
 
   function setState(partial, fromControl) {
@@ -380,6 +400,10 @@
   }
 
   explorer.simulate = function (o) { return KERNEL.simulate(o); };
+  /** True while the support's contact is being computed or drawn (texts included). */
+  explorer.pending = function () {
+    return !!(contactChannel.inFlight || contactChannel.pending) || later.waiting();
+  };
   Object.defineProperty(explorer, "state", {
     get: function () { return Object.assign({}, state); }, enumerable: true
   });
@@ -400,7 +424,9 @@
     setState(partial, true);
   };
   explorer._tab = function (index) {
-    if (syncing || !doc) return;
+    if (!doc) return;
+    showTab(index);
+    if (syncing) return;
     setState({tab: CONFIG.offline_tabs[index]}, true);
   };
   explorer._projector = function (on) {
@@ -464,7 +490,7 @@
     doc.all_models.forEach(function (m) {
       if (m.name) (byName[m.name] = byName[m.name] || []).push(m);
     });
-    [contactChannel, sweepChannel, uniformChannel].forEach(function (c) { c.start(); });
+    contactChannel.start();  // the arrays' workers start at their first job
     applyFragment();
     window.addEventListener("hashchange", applyFragment);
     window.addEventListener("keydown", mapKeys, true);

@@ -10,6 +10,7 @@
  *   later.put(key, fn);   // run fn after the next paint; a newer fn for the same key
  *                         // replaces it (the newest state wins, in order of first put)
  *   later.run();          // run what is waiting now (e.g. when nothing is computing)
+ *   later.waiting();      // true while work waits
  *
  * ``busy()`` true (a newer contact is being computed, e.g. keys held down) holds the
  * waiting work until the next ``put``/``run``: the reader sees the support move first.
@@ -42,6 +43,8 @@
       root.setTimeout(function () { self.scheduled = false; self.run(); }, 0);
     });
   };
+  /** True while work waits to be drawn. */
+  Later.prototype.waiting = function () { return this.order.length > 0; };
   Later.prototype.run = function (force) {
     if (!force && this.busy()) return;  // the next put (the newer contact's) runs them
     var jobs = this.jobs, order = this.order;

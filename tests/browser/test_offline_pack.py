@@ -120,9 +120,8 @@ def test_a_slider_key_press_changes_the_plotted_data(offline):
     handle.focus()
     for _ in range(5):
         handle.press("ArrowLeft")
-    offline.page.wait_for_function(f"{DRAWN} > {drawn} && explorer.state.theta0_deg === 85")
-    offline.page.wait_for_function("!Bokeh.documents[0].get_model_by_name('status').text"
-                                   ".startsWith('computing')")
+    offline.page.wait_for_function(f"{DRAWN} > {drawn} && explorer.state.theta0_deg === 85"
+                                   " && !explorer.pending()")
     after = offline.data("orbit")
     assert after["x1"] != before["x1"]
     assert "theta0_deg=85" in offline.page.evaluate("location.hash")
@@ -356,11 +355,10 @@ def test_rapid_key_presses_end_with_every_view_in_the_final_state(offline):
     want = compute_support(p)
     ftx = f"{want.fixed.FTx_over_mu0FN:.3f}"
     offline.page.wait_for_function(
-        f"Bokeh.documents[0].get_model_by_name('headline-number').text.includes('{ftx}')"
-        " && explorer.polar && explorer.uniform && explorer.uniform.key.startsWith("
-        "explorer.state.k_r + ',') && explorer.polar.key.startsWith(explorer.state.k_r + ',')",
-        timeout=60_000)
-    offline.page.wait_for_timeout(500)  # nothing left to come
+        "!explorer.pending() && explorer.uniform.key.startsWith(explorer.state.k_r + ',')"
+        " && explorer.polar.key.startsWith(explorer.state.k_r + ',')", timeout=60_000)
+    offline.page.wait_for_timeout(300)
+    assert offline.page.evaluate("explorer.pending()") is False
     result = offline.page.evaluate("explorer.result")
     assert result["params"]["theta0"] == pytest.approx(math.radians(102), rel=1e-12)
     assert result["F_mean_x"] == pytest.approx(want.result.F_mean[0], rel=1e-4)
@@ -407,5 +405,9 @@ def test_a_link_to_a_hidden_tab_draws_it_in_the_links_state(offline):
     offline.page.wait_for_function(f"{POLAR} >= 1")
     assert offline.page.evaluate("explorer.polar.key") == "0.1,0.3,3,self"
     assert "72 orientations computed" in offline.text("polar-status")
+    shown = [f.bounding_box() for f in offline.page.locator(".bk-Figure").all()
+             if f.is_visible()]
+    assert len(shown) == 3 and min(b["width"] for b in shown) >= 250  # Fig. 11's three
+    assert len(offline.data("polar_FTx")["value"]) == 2 * 72 + 1
     assert "tab=polar" in offline.page.evaluate("location.hash")
     assert offline.errors == []
