@@ -51,7 +51,8 @@ MAX_BYTES = 5 * 1024 * 1024
 OFFLINE_TABS = ("support", "polar", "map")
 TITLE = "Micropillar friction explorer (offline)"
 #: The page's scripts (app/offline/*.js), in loading order.
-SCRIPTS = ("kernel", "solvers", "arrays", "fragment", "jobs", "views", "paint", "page")
+SCRIPTS = ("kernel", "solvers", "arrays", "fragment", "jobs", "views", "paint", "mapview",
+           "page")
 
 _SLIDERS = (  # (control, fragment key, title, log scale or the linear step)
     ("k_r", "k_r", "k_r: radial stiffness (Eq. 5)", True),

@@ -302,40 +302,8 @@
   }
 
   // ------------------------------------------------------------ drawing: Fig. 5
-  var mapQuantity = "5a";
-  function nearestLoad(F) {
-    var best = null;
-    CONFIG.shipped_loads.forEach(function (L) {
-      if (best === null || Math.abs(Math.log(L / F)) < Math.abs(Math.log(best / F))) best = L;
-    });
-    return best;
-  }
-  function loadLabel(L) { return KERNEL.formatG(L); }
-
-  var mapShown = null, mapNow = null;  // what the map shows: load/quantity, the springs
-  function drawMap() {  // new data only for a new load, quantity or springs
-    var load = nearestLoad(state.F_N), m = CONFIG.maps.loads[loadLabel(load)];
-    if (mapShown !== loadLabel(load) + "/" + mapQuantity) {
-      var data = Object.assign({}, CONFIG.maps.cells, m.columns);
-      data.value = m.columns[CONFIG.maps.value[mapQuantity]];
-      source("regime_map").data = data;
-      var lohi = m.range[mapQuantity];
-      model("regime_map_colors").setv({low: lohi[0], high: lohi[1]});
-      figure("regime_map").title.text = m.titles[mapQuantity];  // app.figures.arrays.map_title
-      mapShown = loadLabel(load) + "/" + mapQuantity;
-    }
-    model("map-note").text = "Uniform arrays (θ₀ uniform), self-consistent β, shipped with the " +
-      "model at F_N = " + CONFIG.shipped_loads.map(loadLabel).join(", ") + ". Shown: F_N = " +
-      loadLabel(load) + (Math.abs(load - state.F_N) > 1e-12 * load
-        ? ", the shipped load nearest to the current F_N = " + KERNEL.formatG(state.F_N, 3) : "") +
-      ". Click the map, or use the arrow keys on this tab (← → k_r, ↑ ↓ k_θ, one cell), " +
-      "to set the springs.";
-    if (mapNow !== state.k_r + "," + state.k_theta) {
-      source("regime_now").data = {k_r: [state.k_r], k_theta: [state.k_theta]};
-      mapNow = state.k_r + "," + state.k_theta;
-    }
-    document.documentElement.setAttribute("data-map", loadLabel(load) + "/" + mapQuantity);
-  }
+  var map = null;  // mapview.js, once the document is there
+  function drawMap() { map.draw(); }
 
   // ------------------------------------------------------------ projector mode
   var projectorShown = false;  // the look the page was packed with: the screen's
@@ -438,11 +406,8 @@
     if (syncing || !doc) return;
     setState({beta_mode: mode}, true);
   };
-  explorer._mapQuantity = function (q) { mapQuantity = q; if (doc) drawMap(); };
-  explorer._mapTap = function (x, y) {  // a click on the regime map: its k_r, k_theta
-    if (!doc || !isFinite(x) || !isFinite(y)) return;
-    setState({k_r: clampRound("k_r", x), k_theta: clampRound("k_theta", y)}, false);
-  };
+  explorer._mapQuantity = function (q) { if (map) map.quantity(q); };
+  explorer._mapTap = function (x, y) { if (map) map.tap(x, y); };  // a click on the map
   explorer._polarTap = function (x, y) {  // a click on a polar diagram: its angle is theta0
     if (!doc || (x === 0 && y === 0)) return;
     var deg = Math.round((Math.atan2(y, x) * 180 / Math.PI + 360) % 360);
@@ -450,27 +415,6 @@
   };
   explorer.parseFragment = parseFragment;
   window.explorer = explorer;
-
-  /** Arrow keys on the map tab move the springs one cell of the shipped map's grid. */
-  function mapKeys(e) {
-    if (!doc || state.tab !== "map" || e.altKey || e.ctrlKey || e.metaKey) return;
-    var tag = (e.target && e.target.tagName) || "";
-    if (["INPUT", "SELECT", "TEXTAREA", "BUTTON"].indexOf(tag) >= 0) return;
-    var path = e.composedPath ? e.composedPath() : [];
-    if (path.some(function (el) {
-      return el && el.getAttribute && (el.getAttribute("role") === "slider" ||
-        el.getAttribute("role") === "tab" || (el.classList && el.classList.contains("noUi-handle")));
-    })) return;
-    var moves = {ArrowLeft: ["k_r", -1], ArrowRight: ["k_r", 1], ArrowDown: ["k_theta", -1], ArrowUp: ["k_theta", 1]};
-    var move = moves[e.key];
-    if (!move) return;
-    var k = CONFIG.maps.cells.k_r, n = Math.round(Math.sqrt(k.length));
-    var step = Math.pow(CONTROLS.k_r.hi / CONTROLS.k_r.lo, 1 / (n - 1)), partial = {};
-    partial[move[0]] = clampRound(move[0], state[move[0]] * Math.pow(step, move[1]));
-    e.preventDefault();
-    e.stopPropagation();  // not the player's keys: it is on another tab
-    setState(partial, false);
-  }
 
   // The state the file was packed with (the dashboard's download button): used when the
   // link has no fragment of its own.
@@ -490,10 +434,15 @@
     doc.all_models.forEach(function (m) {
       if (m.name) (byName[m.name] = byName[m.name] || []).push(m);
     });
+    map = window.MicropillarMapView(CONFIG, {
+      source: source, model: model, figure: figure, clampRound: clampRound,
+      state: function () { return state; },
+      set: function (partial) { setState(partial, false); }
+    });
     contactChannel.start();  // the arrays' workers start at their first job
     applyFragment();
     window.addEventListener("hashchange", applyFragment);
-    window.addEventListener("keydown", mapKeys, true);
+    window.addEventListener("keydown", function (e) { map.keys(e); }, true);
   }
 
   (function waitForBokeh() {  // the document is built after the page's scripts ran
