@@ -338,9 +338,10 @@ def test_a_packed_state_opens_without_a_fragment(browser, tmp_path):
 def test_rapid_key_presses_end_with_every_view_in_the_final_state(offline):
     """Keys held down: the support is redrawn first and the texts, the polar marker, the
     uniform array and the link follow after the paint; once the presses settle every view
-    shows the last state's numbers (none left at an earlier press's)."""
-    offline.open()
-    offline.page.wait_for_function(f"{POLAR} >= 1 && {UNIFORM} >= 1")
+    shows the last state's numbers (none left at an earlier press's). Soft springs at
+    F_N = 3: each contact takes long enough for the next presses to arrive meanwhile."""
+    offline.open("#k_r=0.03&k_theta=0.03&F_N=3&theta0_deg=90")
+    offline.page.wait_for_function(f"{POLAR} >= 1 && {UNIFORM} >= 1", timeout=120_000)
     k_r = offline.page.locator(".noUi-handle").nth(0)
     k_r.focus()
     for _ in range(3):  # new springs: the polar sweep and the uniform array again
@@ -350,13 +351,13 @@ def test_rapid_key_presses_end_with_every_view_in_the_final_state(offline):
     for _ in range(12):  # pressed with no wait: each starts before the last is drawn
         theta0.press("ArrowRight")
     state = offline.page.evaluate("explorer.state")
-    assert state["theta0_deg"] == 102 and state["k_r"] < 3
-    p = Params(k_r=state["k_r"], k_theta=0.01, theta0=math.radians(102))
+    assert state["theta0_deg"] == 102 and state["k_r"] < 0.03
+    p = Params(k_r=state["k_r"], k_theta=0.03, F_N=3, theta0=math.radians(102))
     want = compute_support(p)
     ftx = f"{want.fixed.FTx_over_mu0FN:.3f}"
     offline.page.wait_for_function(
         "!explorer.pending() && explorer.uniform.key.startsWith(explorer.state.k_r + ',')"
-        " && explorer.polar.key.startsWith(explorer.state.k_r + ',')", timeout=60_000)
+        " && explorer.polar.key.startsWith(explorer.state.k_r + ',')", timeout=120_000)
     offline.page.wait_for_timeout(300)
     assert offline.page.evaluate("explorer.pending()") is False
     result = offline.page.evaluate("explorer.result")
@@ -379,7 +380,7 @@ def test_rapid_key_presses_end_with_every_view_in_the_final_state(offline):
     assert now["value"][0] == pytest.approx(result["F_mean_x"] / mu0(), rel=1e-12)
     # The sweep and the uniform array are the final springs' (and so is the headline).
     assert offline.page.evaluate(
-        "explorer.polar.key === [explorer.state.k_r, 0.01, 1, 'self'].join(',')")
+        "explorer.polar.key === [explorer.state.k_r, 0.03, 3, 'self'].join(',')")
     uniform = offline.page.evaluate("explorer.uniform")
     assert f"{uniform['FTx_over_mu0FN']:.4g}" in offline.text("uniform-readout")
     readouts = pytest.importorskip("app.views.readouts")
