@@ -24,6 +24,7 @@
 (function (root) {
   "use strict";
   var KEEP = 500;
+  var HIDDEN_MS = 250;  // the latest a job waits for a frame (none come to a hidden page)
 
   function Later(busy) {
     this.busy = busy || function () { return false; };
@@ -37,11 +38,14 @@
   Later.prototype.schedule = function () {
     if (this.scheduled) return;
     this.scheduled = true;
-    var self = this;
+    var self = this, fired = false;
+    function fire() {
+      if (fired) return;
+      fired = true; self.scheduled = false; self.run();
+    }
     // setTimeout inside the frame's callback: after that frame has been painted.
-    root.requestAnimationFrame(function () {
-      root.setTimeout(function () { self.scheduled = false; self.run(); }, 0);
-    });
+    root.requestAnimationFrame(function () { root.setTimeout(fire, 0); });
+    root.setTimeout(fire, HIDDEN_MS);  // a hidden page gets no animation frames
   };
   /** True while work waits to be drawn. */
   Later.prototype.waiting = function () { return this.order.length > 0; };
