@@ -112,7 +112,13 @@
 
   function arrayBeta(s) { return s.beta_mode === "fixed" ? s.beta : "self"; }
   function contactInput(s) {
-    return {beta: arrayBeta(s),
+    // The last contact's beta and slope start the solver when only theta0 changed
+    // (arrays.js, "contact" with ``previous``: the same root to its tolerance, 1e-8).
+    var r = explorer.result, previous = null;
+    if (r && !r.beta_note && r.array_success && r.params.k_r === s.k_r &&
+        r.params.k_theta === s.k_theta && r.params.F_N === s.F_N)
+      previous = {beta: r.params.beta, slope: isFinite(r.beta_slope) ? r.beta_slope : null};
+    return {beta: arrayBeta(s), previous: previous,
             input: {k_r: s.k_r, k_theta: s.k_theta, F_N: s.F_N, theta0: s.theta0_deg * Math.PI / 180,
                     rtol: 1e-6, samples: CONFIG.support_samples, max_steps: MAX_STEPS}};
   }
