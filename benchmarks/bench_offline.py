@@ -4,6 +4,7 @@ Chromium, the page's open-to-first-plot time, slider key press -> redrawn, and p
 self-consistent beta at tol 1e-3, in Chromium.
 
     python benchmarks/bench_offline.py [--repeats 30] [--presses 40] [--array-repeats 5]
+    python benchmarks/bench_offline.py --file old.html --file new.html --opens 5  # compare
 
 The trajectory is the pendulum at theta0 = pi/2, F_N = 1 at rtol 3e-7 (its exit-state error,
 7e-7,
@@ -16,6 +17,16 @@ runs on the page's main thread, after the page's own first computations have fin
 the sweep with each orientation's self-consistent beta, as the page draws it, and at
 beta = 1). Numbers measured while other jobs run are not
 trustworthy: measure on a quiet machine (and with ``busy_core.py`` for a shared server).
+
+Open -> first plot: Playwright's wall time from ``goto`` to the page's ``data-drawn`` (the
+first contact computed and drawn), over ``--opens`` loads, and the floor: a page with the
+same BokehJS inlined and one empty figure, to its first contentful paint. Key press ->
+redrawn (theta0's slider, ``--presses`` presses one at a time): in the page, from the
+keydown event's time stamp to the first animation frame after the support's figures
+got the new contact (``explorer.keyToSupportMs``), and Playwright's round trip (press,
+then wait for ``explorer.drawn``: the texts too) for comparison. With ``--file`` (given
+more than once) the benchmark measures packed files instead of packing one, alternating
+between them (e.g. one packed from main, one from a branch: same machine, same load).
 """
 from __future__ import annotations
 
@@ -94,37 +105,101 @@ def node_times(repeats: int) -> list[float]:
                                      check=True).stdout)
 
 
-def browser_figures(path: Path, repeats: int, presses: int, array_repeats: int) -> dict:
+DRAWN = "document.documentElement.getAttribute('data-drawn') >= '1'"
+FCP = ("new Promise((done) => new PerformanceObserver((list, obs) => { for (const e of "
+       "list.getEntries()) if (e.name === 'first-contentful-paint') { obs.disconnect(); "
+       "done(e.startTime); } }).observe({type: 'paint', buffered: true}))")
+
+
+def floor_page(path: Path) -> None:
+    """The floor of open -> first plot: BokehJS inlined as in the pack, one empty figure."""
+    from bokeh.embed import file_html
+    from bokeh.plotting import figure
+    from bokeh.resources import INLINE
+
+    fig = figure(width=300, height=300)
+    fig.line([0, 1], [0, 1])
+    path.write_text(file_html(fig, resources=INLINE, title="floor"),
+                    encoding="utf-8")
+
+
+def _context(browser):
+    context = browser.new_context(viewport={"width": 1280, "height": 720})
+    context.route("**/*", lambda r: r.continue_() if r.request.url.startswith("file:")
+                  else r.abort())
+    return context
+
+
+def open_times(browser, path: Path, ready: str) -> float:
+    """Seconds from ``goto`` to ``ready`` (a page function), in a new context."""
+    context = _context(browser)
+    page = context.new_page()
+    t0 = time.perf_counter()
+    page.goto(path.as_uri())
+    page.wait_for_function(ready, timeout=60_000)
+    seconds = time.perf_counter() - t0
+    context.close()
+    return seconds
+
+
+def key_presses(browser, path: Path, presses: int) -> dict:
+    """Key press -> redrawn: in the page (``explorer.keyToSupportMs``, absent in older
+    packs) and Playwright's round trips."""
+    context = _context(browser)
+    page = context.new_page()
+    page.goto(path.as_uri())
+    page.wait_for_function("explorer.drawn >= 1 && explorer.polarDrawn >= 1 && "
+                           "explorer.uniformDrawn >= 1", timeout=120_000)
+    handle = page.locator(".noUi-handle").nth(3)
+    handle.focus()
+    trips = []
+    for i in range(presses):
+        drawn = page.evaluate("explorer.drawn")
+        t = time.perf_counter()
+        handle.press("ArrowLeft" if i % 2 else "ArrowRight")
+        page.wait_for_function(f"explorer.drawn > {drawn}", polling="raf")
+        trips.append(1000 * (time.perf_counter() - t))
+    page.wait_for_timeout(100)
+    in_page = page.evaluate(f"explorer.keyToSupportMs ? explorer.keyToSupportMs.slice(-{presses}) : null")
+    context.close()
+    return dict(trips=trips, in_page=in_page)
+
+
+def browser_figures(paths: list[Path], repeats: int, presses: int, array_repeats: int,
+                    opens: int) -> dict:
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as p:
         browser = p.chromium.launch(executable_path="/usr/bin/chromium", headless=True,
                                     args=["--no-sandbox", "--disable-gpu"])
-        context = browser.new_context(viewport={"width": 1280, "height": 720})
-        context.route("**/*", lambda r: r.continue_() if r.request.url.startswith("file:")
-                      else r.abort())
+        floor = paths[0].parent / "floor.html"
+        floor_page(floor)
+        first = {path: [] for path in [*paths, floor]}
+        for _ in range(opens):  # alternating: the files see the same load
+            for path in paths:
+                first[path].append(open_times(browser, path, DRAWN))
+            first[floor].append(open_times(browser, floor, f"{FCP}.then(() => true)"))
+        redraw = {path: [] for path in paths}
+        for _ in range(2):  # alternating, in two halves
+            for path in paths:
+                got = key_presses(browser, path, (presses + 1) // 2)
+                redraw[path].append(got)
+        context = _context(browser)
         page = context.new_page()
-        t0 = time.perf_counter()
-        page.goto(path.as_uri())
-        page.wait_for_function("document.documentElement.getAttribute('data-drawn') >= '1'")
-        first = time.perf_counter() - t0
-        times = page.evaluate(f"{TIMING}(MicropillarKernel, {json.dumps(CASE)}, {BATCH}, "
-                              f"{WARMUP}, {repeats})")
-        handle = page.locator(".noUi-handle").nth(3)
-        handle.focus()
-        redraw = []
-        for i in range(presses):
-            drawn = page.evaluate("explorer.drawn")
-            t = time.perf_counter()
-            handle.press("ArrowLeft" if i % 2 else "ArrowRight")
-            page.wait_for_function(f"explorer.drawn > {drawn}", polling="raf")
-            redraw.append(1000 * (time.perf_counter() - t))
+        page.goto(paths[-1].as_uri())
         page.wait_for_function("explorer.polarDrawn >= 1 && explorer.uniformDrawn >= 1",
                                timeout=120_000)
+        times = page.evaluate(f"{TIMING}(MicropillarKernel, {json.dumps(CASE)}, {BATCH}, "
+                              f"{WARMUP}, {repeats})")
         arrays = page.evaluate(f"{ARRAYS}(MicropillarArrays, JSON.parse(document.getElementById("
                                f"'mp-config').textContent), {array_repeats})") if array_repeats else {}
         browser.close()
-    return dict(first=first, times=times, redraw=redraw, arrays=arrays)
+    return dict(first=first, floor=floor, times=times, redraw=redraw, arrays=arrays)
+
+
+def p95(values) -> float:
+    v = sorted(values)
+    return v[min(len(v) - 1, math.ceil(0.95 * len(v)) - 1)]
 
 
 def main() -> None:
@@ -133,30 +208,51 @@ def main() -> None:
     parser.add_argument("--presses", type=int, default=40)
     parser.add_argument("--array-repeats", type=int, default=5,
                         help="runs of each regime's polar sweep and uniform array (0: none)")
+    parser.add_argument("--opens", type=int, default=3, help="page loads per file")
+    parser.add_argument("--file", type=Path, action="append", default=[],
+                        help="a packed explorer to measure instead of packing one (repeat to "
+                             "compare: measured alternately)")
     args = parser.parse_args()
     if shutil.which("node") is None:
         raise SystemExit("node is not installed")
     from app.offline.pack import write
 
+    print(f"load average: {Path('/proc/loadavg').read_text().split()[:3]}")
     with tempfile.TemporaryDirectory() as folder:
-        path = Path(folder) / "explorer.html"
-        size = write(path)
-        print(f"file: {size / 1e6:.2f} MB ({size:,} bytes)")
+        paths = [Path(folder) / f"{i}-{f.name}" for i, f in enumerate(args.file)]
+        for f, path in zip(args.file, paths):
+            shutil.copyfile(f, path)
+        if not paths:
+            paths = [Path(folder) / "explorer.html"]
+            write(paths[0])
+        for path in paths:
+            size = path.stat().st_size
+            print(f"file {path.name}: {size / 1e6:.2f} MB ({size:,} bytes)")
         print(f"exit-state error of the benchmark case: {exit_error():.1e}")
         print(f"one trajectory, Node {subprocess.run(['node', '--version'], text=True, capture_output=True).stdout.strip()}: "
               f"{spread(node_times(args.repeats))}")
-        figures = browser_figures(path, args.repeats, args.presses, args.array_repeats)
-    print(f"one trajectory, Chromium (page's main thread): {spread(figures['times'])}")
-    print(f"open from file:// -> first plot: {figures['first']:.2f} s")
-    redraw = sorted(figures["redraw"])
-    p95 = redraw[min(len(redraw) - 1, math.ceil(0.95 * len(redraw)) - 1)]
-    print(f"slider key press -> redrawn: {spread(redraw, digits=1)}, p95 {p95:.1f} ms "
-          f"(Playwright's round trips included)")
+        figures = browser_figures(paths, args.repeats, args.presses, args.array_repeats,
+                                  args.opens)
+        print(f"one trajectory, Chromium (page's main thread, {paths[-1].name}): "
+              f"{spread(figures['times'])}")
+        for path, seconds in figures["first"].items():
+            what = ("the floor (BokehJS inlined, one empty figure) -> first contentful paint"
+                    if path == figures["floor"] else f"{path.name}: open from file:// -> first plot")
+            print(f"{what}: {spread(seconds, unit='s', digits=2)}")
+        for path, runs in figures["redraw"].items():
+            trips = [t for run in runs for t in run["trips"]]
+            if runs[0]["in_page"] is not None:
+                in_page = [t for run in runs for t in run["in_page"]]
+                print(f"{path.name}: slider key press -> support redrawn, in the page: "
+                      f"{spread(in_page, digits=1)}, p95 {p95(in_page):.1f} ms")
+            print(f"{path.name}: slider key press -> everything redrawn, Playwright's round "
+                  f"trips: {spread(trips, digits=1)}, p95 {p95(trips):.1f} ms")
     for name, t in figures["arrays"].items():
         print(f"{name}, F_N = 1, Chromium: polar sweep (72 orientations), self-consistent beta "
               f"{spread(t['self'], digits=0)}; at beta = 1 {spread(t['one'], digits=0)}; "
               f"uniform array with self-consistent beta, tol 1e-3 ({t['contacts']} contacts) "
               f"{spread(t['uniform'], digits=0)}")
+    print(f"load average: {Path('/proc/loadavg').read_text().split()[:3]}")
     print("Figures measured while other jobs share the machine are not trustworthy: "
           "re-measure on a quiet one.")
 

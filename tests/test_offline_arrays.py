@@ -91,6 +91,33 @@ def test_fixed_beta_agrees_with_python():
 
 
 
+def test_a_key_press_contact_starts_from_the_last_one():
+    """The page's support after a theta0 key press (arrays.js "contact" with ``previous``:
+    the last contact's beta and slope start the secant): the same beta, notes and forces as
+    Python's fixed arrays there, to the solver's tolerance, as when solved from scratch."""
+    import numpy as np
+
+    theta0 = np.radians(np.arange(85.0, 125.0, 5.0))
+    for name in REGIMES:
+        base = dict(_springs(name), F_N=1.0, rtol=1e-6, samples=400)
+        calls = [dict(fn="job", args=["contact", dict(beta="self", input=dict(base, theta0=theta0[0]))])]
+        first = run_js(calls)[0]
+        got = [first]
+        for t in theta0[1:]:  # each press warm-started from the one before, as in the page
+            last = got[-1]
+            previous = None if last["beta_note"] else dict(beta=last["params"]["beta"],
+                                                            slope=last.get("beta_slope"))
+            got.append(run_js([dict(fn="job", args=["contact", dict(
+                beta="self", previous=previous, input=dict(base, theta0=float(t)))])])[0])
+        py = orientation_sweep(REGIMES[name].replace(F_N=1.0), theta0, beta="self", rtol=1e-6)
+        assert [g["beta_note"] for g in got] == list(py.beta_note), name
+        np.testing.assert_allclose([g["params"]["beta"] for g in got], py.beta, rtol=1e-6,
+                                   err_msg=name)
+        ok = np.array([not note for note in py.beta_note])
+        np.testing.assert_allclose(np.array([g["F_mean_x"] for g in got])[ok] / mu0(),
+                                   py.FTx_over_mu0FN[ok], rtol=1e-5, err_msg=name)
+
+
 def test_polar_sweep_solves_each_beta_from_its_neighbours():
     """The page's polar sweep (72 orientations, rtol 1e-6) starts each orientation's
     secant from its neighbours' beta: the same betas and notes as Python's bracket (to its

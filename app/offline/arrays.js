@@ -286,12 +286,24 @@
   }
 
   /** The page's jobs (its Web Workers run this): "contact", the support at theta0 as its
-   * fixed array's contact (beta solved or given, like app.worker.compute_support), with
-   * its array's ``beta_note``; "sweep", Fig. 11's orientations; "uniform", the array. */
+   * fixed array's contact (beta solved or given, like app.worker.compute_support; with
+   * ``previous`` {beta, slope} solved from there), with its array's ``beta_note`` and
+   * ``beta_slope``; "sweep", Fig. 11's orientations; "uniform", the array. */
   function job(kind, o) {
     if (kind === "contact") {
-      var a = fixedArray(o.input, o.beta);
-      return assign(a.contact, {beta_note: a.beta_note, array_success: a.success});
+      // o.previous ({beta, slope}: the last contact's at the same springs and load): the
+      // secant starts there (warmArray) instead of bracketing from scratch.
+      var a;
+      if (o.beta === "self" && o.previous) {  // the secant's contacts unsampled, as fixedBeta's
+        a = warmArray(assign({}, o.input, {samples: 0}), o.previous);
+        var contact = K.simulate(assign({}, o.input, {beta: a.beta}));
+        a.success = a.success && contact.success;
+        a.contact = contact;
+      } else {
+        a = fixedArray(o.input, o.beta);
+      }
+      return assign(a.contact, {beta_note: a.beta_note, array_success: a.success,
+                                beta_slope: a.slope});
     }
     if (kind === "sweep") return orientationSweep(o.base, o.theta0, o.beta);
     if (kind === "uniform") return uniformArray(o.input, {beta: o.beta, tol: o.tol});

@@ -4,7 +4,7 @@
  *
  *   var c = new MicropillarJobs.Channel(kind, draw(result, ms, input), busy(on));
  *   c.start();          // its worker (none in a browser without workers: then on the page)
- *   c.request(input);   // the newest request wins
+ *   c.request(input);   // the newest request wins (starts the worker if not yet started)
  *
  * One job at a time per channel; a newer request waits for the running job, or stops it
  * (the worker is replaced) when that job has run longer than RESTART_AFTER_MS: the reader
@@ -24,11 +24,12 @@
 
   function Channel(kind, draw, busy) {
     this.kind = kind; this.draw = draw; this.busy = busy;
-    this.worker = null; this.inFlight = null; this.pending = null;
+    this.worker = null; this.inFlight = null; this.pending = null; this.started = false;
   }
 
   Channel.prototype.start = function () {
     var self = this;
+    this.started = true;
     try {
       var code = WORKER_SCRIPTS.map(function (id) {
         return document.getElementById(id).textContent;
@@ -45,6 +46,7 @@
   };
 
   Channel.prototype.request = function (input) {
+    if (!this.started) this.start();
     var job = {id: nextId++, input: input, started: Date.now()};
     if (this.inFlight) {
       this.pending = job;

@@ -51,7 +51,8 @@ MAX_BYTES = 5 * 1024 * 1024
 OFFLINE_TABS = ("support", "polar", "map")
 TITLE = "Micropillar friction explorer (offline)"
 #: The page's scripts (app/offline/*.js), in loading order.
-SCRIPTS = ("kernel", "solvers", "arrays", "fragment", "jobs", "views", "page")
+SCRIPTS = ("kernel", "solvers", "arrays", "fragment", "jobs", "views", "paint", "mapview",
+           "page")
 
 _SLIDERS = (  # (control, fragment key, title, log scale or the linear step)
     ("k_r", "k_r", "k_r: radial stiffness (Eq. 5)", True),
@@ -172,6 +173,15 @@ def _map_titles() -> dict:
     return {q: t for q, (_, t) in MAP_QUANTITIES.items()}
 
 
+def _later_tab(child, title: str, key: str) -> TabPanel:
+    """A tab drawn when first shown: its panel holds a placeholder and, in its ``tags``, the
+    panel with ``child`` that the page puts in its place (page.js, ``showTab``). Hidden
+    tabs are neither built nor laid out while the page opens."""
+    content = TabPanel(child=child, title=title, name=f"tab-{key}")
+    placeholder = Div(text="<i>drawing…</i>", name=f"tab-{key}-placeholder")
+    return TabPanel(child=placeholder, title=title, name=f"tab-{key}-later", tags=[content])
+
+
 def _layout(cfg: dict, figs: dict, polar: dict, regime_map):
     controls = cfg["controls"]
     sliders = [_slider(key, title, controls[key]) for _, key, title, _ in _SLIDERS]
@@ -204,20 +214,37 @@ def _layout(cfg: dict, figs: dict, polar: dict, regime_map):
     missing = Div(text=MISSING, name="missing", styles={"color": "#555555", "font-size": "0.85em"})
     side = column([number, uniform, notice, row(presets, sizing_mode="stretch_width",
                                                           styles={"flex-wrap": "wrap"}),
-                   *sliders[:4], beta_mode, sliders[4], status, projector, missing], sizing_mode="stretch_width",
-                  min_width=280, max_width=400, name="side")
+                   *sliders[:4], beta_mode, sliders[4], status, projector, missing],
+                  sizing_mode="stretch_width", name="side")
     tabs = Tabs(tabs=[TabPanel(child=_support_tab(figs), title="Support", name="tab-support"),
-                      TabPanel(child=_polar_tab(polar), title="Polar (Fig. 11)",
-                               name="tab-polar"),
-                      TabPanel(child=_map_tab(regime_map), title="Regime map (Fig. 5)",
-                               name="tab-map")],
+                      _later_tab(_polar_tab(polar), "Polar (Fig. 11)", "polar"),
+                      _later_tab(_map_tab(regime_map), "Regime map (Fig. 5)", "map")],
                 name="tabs", sizing_mode="stretch_width", min_width=300)
     tabs.js_on_change("active", CustomJS(
         code="if (window.explorer) window.explorer._tab(cb_obj.active);"))
-    body = row([side, tabs], sizing_mode="stretch_width",
-               styles={"flex-wrap": "wrap", "gap": "8px"})
-    return column([heading, headline, body], sizing_mode="stretch_width", name="layout",
-                  styles={"overflow-x": "hidden"})
+    return dict(heading=heading, headline=headline, side=side, tabs=tabs)
+
+
+#: Where each root goes (``_layout``'s, by name): separate roots, so that a new text in
+#: the side column or the headline lays out that root alone, not the tabs' figures (Bokeh
+#: lays out a root whole whenever a Div in it changes).
+PAGE_TEMPLATE = """{% block contents %}
+<div class="mp-page">
+{{ embed(roots.heading) }}
+{{ embed(roots.headline) }}
+<div class="mp-body">
+<div class="mp-side">{{ embed(roots.side) }}</div>
+<div class="mp-main">{{ embed(roots.tabs) }}</div>
+</div>
+</div>
+{% endblock %}
+{% block postamble %}<style>
+.mp-page { overflow-x: hidden; }
+.mp-body { display: flex; flex-wrap: wrap; gap: 8px; }
+.mp-side { flex: 1 1 280px; min-width: 280px; max-width: 400px; }
+.mp-main { flex: 1000 1 300px; min-width: 300px; }
+</style>{% endblock %}
+"""
 
 
 def _script(element_id: str, source: str, kind: str = "") -> str:
@@ -275,10 +302,12 @@ def _base_page() -> str:
         [figs["scene"], figs["forces"], figs["law"], figs["energy_fig"], *polar.values(),
          regime_map])
     doc = Document()
-    doc.add_root(_layout(cfg, figs, polar, regime_map))
+    for root in _layout(cfg, figs, polar, regime_map).values():
+        doc.add_root(root)
     doc.title = TITLE
     figs["player"].install(doc)  # the player's keyboard shortcuts (no autoplay)
-    html = _without_fetches(file_html(doc, resources=INLINE, title=TITLE))
+    html = _without_fetches(file_html(doc, resources=INLINE, title=TITLE,
+                                      template=PAGE_TEMPLATE))
     here = resources.files(__package__)
     extra = (_script("mp-config", json.dumps(cfg).replace("</", "<\\/"), "application/json")
              + "".join(_script(f"mp-{name}", (here / f"{name}.js").read_text(encoding="utf-8"))

@@ -8,9 +8,14 @@
  *   explorer.state   -> the current state {k_r, k_theta, F_N, theta0_deg, beta_mode, beta, tab, ...};
  *   explorer.set({k_r: 0.5, ...}) -> change the state (as the sliders do) and redraw;
  *   explorer.preset("slider") -> a regime's springs;
- *   explorer.result  -> the last drawn result; explorer.drawn counts the redraws;
+ *   explorer.result  -> the last drawn result; explorer.drawn counts the redraws (texts
+ *       included: they follow the support's figures after the paint, paint.js);
+ *   explorer.keyToSupportMs -> for the last key presses that changed the state: ms from
+ *       the key press to the first animation frame after the support's figures changed;
  *   explorer.ready   -> a Promise resolved at the first drawn plot;
- *   explorer.polar   -> the last orientation sweep drawn (Fig. 11), explorer.polarDrawn;
+ *   explorer.pending() -> true while the support's contact is computed or drawn;
+ *   explorer.polar   -> the last orientation sweep drawn (Fig. 11; its ``key`` as the
+ *       uniform array's), explorer.polarDrawn;
  *   explorer.uniform -> the last uniform array drawn (its ``key``: k_r,k_theta,F_N,beta),
  *       explorer.uniformDrawn.
  * Reads its configuration (ranges, defaults, regimes: from the Python model at pack time)
@@ -47,6 +52,13 @@
   function source(name) { return find(name, isSource); }
   function figure(name) { return find(name, isFigure); }
   function setData(map) { Object.keys(map).forEach(function (k) { source(k).data = map[k]; }); }
+  // Texts and the other views follow the support's figures after the paint (paint.js);
+  // held while a newer contact is being computed.
+  var PAINT = window.MicropillarPaint, later = new PAINT.Later(function () {
+    return !!(contactChannel.inFlight || contactChannel.pending);
+  }), keyClock = new PAINT.KeyClock(window);
+  /** A Div's new text, written after the paint (the newest text for a Div wins). */
+  function setText(name, text) { later.put(name, function () { model(name).text = text; }); }
   function esc(text) {
     return String(text).replace(/[&<>"]/g, function (c) {
       return {"&": "&amp;", "<": "&lt;", ">": "&gt;", "\"": "&quot;"}[c];
@@ -62,15 +74,22 @@
         if (Math.abs(slider.value - v) > 1e-12) slider.value = v;
       });
       var tab = Math.max(0, CONFIG.offline_tabs.indexOf(state.tab));
+      showTab(tab);
       if (model("tabs").active !== tab) model("tabs").active = tab;
       if (model("projector").active !== state.projector) model("projector").active = state.projector;
       if (model("beta-mode").value !== state.beta_mode) model("beta-mode").value = state.beta_mode;
     } finally { syncing = false; }
     applyProjector();
   }
+  /** A tab's figures are built when it is first shown (pack.py's ``_later_tab``): its
+   * placeholder panel is replaced by the panel in its tags. */
+  function showTab(index) {
+    var tabs = model("tabs"), panel = tabs.tabs[index], content = panel.tags && panel.tags[0];
+    if (!content || !content.child) return;
+    tabs.tabs = tabs.tabs.map(function (p, k) { return k === index ? content : p; });
+  }
   function showNotice(notices) {
-    model("notice").text = notices.length
-      ? "<b>Link:</b> " + notices.map(esc).join("; ") : "";
+    setText("notice", notices.length ? "<b>Link:</b> " + notices.map(esc).join("; ") : "");
   }
 
   // ------------------------------------------------------------ computing
@@ -78,20 +97,28 @@
   // (the Support tab, the headline), the orientation sweep (Fig. 11) and the uniform array
   // (the headline's average over all orientations), so neither array delays the support.
   var Channel = window.MicropillarJobs.Channel;
+  var statusTimer = null;  // "computing…" only for a contact that takes a while
   var contactChannel = new Channel("contact", drawSupport, function (on) {
-    if (on) model("status").text = "computing…";
+    clearTimeout(statusTimer);
+    if (on) statusTimer = setTimeout(function () { model("status").text = "computing…"; }, 200);
   });
   var sweepChannel = new Channel("sweep", drawPolar, function (on) {
-    if (on) model("polar-status").text = "computing the 72 orientations in the page…";
+    if (on) setText("polar-status", "computing the 72 orientations in the page…");
   });
 
   var uniformChannel = new Channel("uniform", drawUniform, function (on) {
-    if (on) model("uniform-readout").text = "<i>uniform array: computing in the page…</i>";
+    if (on) setText("uniform-readout", "<i>uniform array: computing in the page…</i>");
   });
 
   function arrayBeta(s) { return s.beta_mode === "fixed" ? s.beta : "self"; }
   function contactInput(s) {
-    return {beta: arrayBeta(s),
+    // The last contact's beta and slope start the solver when only theta0 changed
+    // (arrays.js, "contact" with ``previous``: the same root to its tolerance, 1e-8).
+    var r = explorer.result, previous = null;
+    if (r && !r.beta_note && r.array_success && r.params.k_r === s.k_r &&
+        r.params.k_theta === s.k_theta && r.params.F_N === s.F_N)
+      previous = {beta: r.params.beta, slope: isFinite(r.beta_slope) ? r.beta_slope : null};
+    return {beta: arrayBeta(s), previous: previous,
             input: {k_r: s.k_r, k_theta: s.k_theta, F_N: s.F_N, theta0: s.theta0_deg * Math.PI / 180,
                     rtol: 1e-6, samples: CONFIG.support_samples, max_steps: MAX_STEPS}};
   }
@@ -109,16 +136,20 @@
   var readyResolve;
   var explorer = {
     ready: new Promise(function (resolve) { readyResolve = resolve; }),
-    drawn: 0, result: null, polar: null, polarDrawn: 0, uniform: null, uniformDrawn: 0
+    drawn: 0, result: null, polar: null, polarDrawn: 0, uniform: null, uniformDrawn: 0,
+    keyToSupportMs: keyClock.times
   };
 
   function range(fig, which, lohi) { fig[which].setv({start: lohi[0], end: lohi[1]}); }
 
   function drawSupport(r, ms) {
     if (r.error) {
-      model("headline").text = "";
-      model("headline-number").text = "";
-      model("status").text = "<b>Not computed:</b> " + esc(r.error);
+      later.put("headline", function () {
+        model("headline").text = "";
+        model("headline-number").text = "";
+      });
+      setText("status", "<b>Not computed:</b> " + esc(r.error));
+      later.put("drawn", countDrawn);
       return;
     }
     var s = r.series, p = r.params;
@@ -133,23 +164,30 @@
     range(figure("energy_live"), "y_range", energies.range);
     var frames = VIEWS.supportFrames(s, p, CONFIG);
     source("support_player_times").data = {t: frames.support_frames.tau};
-    var i = Math.min(model("support_player_frame").value, CONFIG.n_frames - 1);
-    model("support_player_readout").text = "frame " + (i + 1) + " / " + CONFIG.n_frames + " · τ = " +
-      frames.support_frames.tau[i].toFixed(2);
     // New data redraw the current frame (the player's callbacks follow these sources).
     source("energy_live_frames").data = energies.frames;
     source("support_frames").data = frames.support_frames;
     source("support_frame_params").data = frames.support_frame_params;
+    keyClock.drawn();
     explorer.result = r;
-    writeHeadline();
-    model("status").text = "one contact: τ_out = " + r.t_out.toPrecision(4) + " r₀/V₀, " +
+    // After the paint: the texts (each lays its root out again) and the polar marker.
+    var i = Math.min(model("support_player_frame").value, CONFIG.n_frames - 1);
+    setText("support_player_readout", "frame " + (i + 1) + " / " + CONFIG.n_frames + " · τ = " +
+      frames.support_frames.tau[i].toFixed(2));
+    later.put("headline", writeHeadline);
+    setText("status", "one contact: τ_out = " + r.t_out.toPrecision(4) + " r₀/V₀, " +
       r.stats.n_steps + " steps, computed in " + ms + " ms in the browser" +
-      (r.success ? "" : " — <b>" + esc(r.message) + "</b>");
-    explorer.result = r;
-    markPolar();
+      (r.success ? "" : " — <b>" + esc(r.message) + "</b>"));
+    later.put("polar-now", markPolar);
+    later.put("drawn", countDrawn);
+  }
+
+  /** explorer.drawn and data-drawn count a contact's drawing, texts included. */
+  function countDrawn() {
     explorer.drawn += 1;
     document.documentElement.setAttribute("data-drawn", String(explorer.drawn));
-    if (explorer.drawn === 1) { readyResolve(r); autoplay(); }
+    if (explorer.drawn === 1) { readyResolve(explorer.result); autoplay(); }
+    requestArrays();
   }
 
   function betaWords(beta, note) {
@@ -206,13 +244,15 @@
         u.stats.trajectories + " contacts, computed in " + ms + " ms in the browser" +
         (u.message !== "ok" ? " — " + esc(u.message) : "");
     }
-    model("uniform-readout").text = tableHtml(VIEWS.uniformMarkdown(
+    setText("uniform-readout", tableHtml(VIEWS.uniformMarkdown(
       row, CONFIG.felt_average, CONFIG.uniform_failed_note, CONFIG.average_names,
       CONFIG.average_columns, CONFIG.felt_average)) +
-      "<div style='font-size:0.85em;color:#555555'>" + extra + "</div>";
-    writeHeadline();
-    explorer.uniformDrawn += 1;
-    document.documentElement.setAttribute("data-uniform", String(explorer.uniformDrawn));
+      "<div style='font-size:0.85em;color:#555555'>" + extra + "</div>");
+    later.put("headline", writeHeadline);
+    later.put("uniform-drawn", function () {
+      explorer.uniformDrawn += 1;
+      document.documentElement.setAttribute("data-uniform", String(explorer.uniformDrawn));
+    });
   }
 
   function reducedMotion() {
@@ -221,7 +261,8 @@
   function autoplay() {  // play=1 in the link, unless the reader asked for reduced motion
     if (!state.play) return;
     if (reducedMotion()) {
-      model("support_player_readout").text += " · autoplay off (reduced motion)";
+      var readout = model("support_player_readout");
+      readout.text += " · autoplay off (reduced motion)";
       return;
     }
     model("support_player_play").active = true;
@@ -238,20 +279,23 @@
     });
   }
 
-  function drawPolar(sweep, ms) {
-    if (sweep.error) { model("polar-status").text = "<b>Not computed:</b> " + esc(sweep.error); return; }
+  function drawPolar(sweep, ms, input) {
+    if (sweep.error) { setText("polar-status", "<b>Not computed:</b> " + esc(sweep.error)); return; }
     Object.keys(CONFIG.polar).forEach(function (key) {
       var res = VIEWS.polarData(key, CONFIG.polar[key][2], sweep.theta0, polarValues(sweep, key));
       polarAxes[key] = res[1];
       setData(res[0]);
     });
     var failed = sweep.success.filter(function (ok) { return !ok; }).length;
-    model("polar-status").text = sweep.theta0.length + " orientations computed in " + ms +
-      " ms in the browser" + (failed ? "; <b>" + failed + " contacts did not finish</b>" : "");
-    explorer.polar = sweep;
+    setText("polar-status", sweep.theta0.length + " orientations computed in " + ms +
+      " ms in the browser" + (failed ? "; <b>" + failed + " contacts did not finish</b>" : ""));
+    explorer.polar = Object.assign({}, sweep, {key: [input.base.k_r, input.base.k_theta,
+                                                     input.base.F_N, input.beta].join(",")});
     markPolar();
-    explorer.polarDrawn += 1;
-    document.documentElement.setAttribute("data-polar", String(explorer.polarDrawn));
+    later.put("polar-drawn", function () {
+      explorer.polarDrawn += 1;
+      document.documentElement.setAttribute("data-polar", String(explorer.polarDrawn));
+    });
   }
 
   function markPolar() {  // the current theta0 and its values (this contact's)
@@ -264,37 +308,15 @@
   }
 
   // ------------------------------------------------------------ drawing: Fig. 5
-  var mapQuantity = "5a";
-  function nearestLoad(F) {
-    var best = null;
-    CONFIG.shipped_loads.forEach(function (L) {
-      if (best === null || Math.abs(Math.log(L / F)) < Math.abs(Math.log(best / F))) best = L;
-    });
-    return best;
-  }
-  function loadLabel(L) { return KERNEL.formatG(L); }
-
-  function drawMap() {
-    var load = nearestLoad(state.F_N), m = CONFIG.maps.loads[loadLabel(load)];
-    var data = Object.assign({}, CONFIG.maps.cells, m.columns);
-    data.value = m.columns[CONFIG.maps.value[mapQuantity]];
-    source("regime_map").data = data;
-    var lohi = m.range[mapQuantity];
-    model("regime_map_colors").setv({low: lohi[0], high: lohi[1]});
-    figure("regime_map").title.text = m.titles[mapQuantity];  // app.figures.arrays.map_title
-    model("map-note").text = "Uniform arrays (θ₀ uniform), self-consistent β, shipped with the " +
-      "model at F_N = " + CONFIG.shipped_loads.map(loadLabel).join(", ") + ". Shown: F_N = " +
-      loadLabel(load) + (Math.abs(load - state.F_N) > 1e-12 * load
-        ? ", the shipped load nearest to the current F_N = " + KERNEL.formatG(state.F_N, 3) : "") +
-      ". Click the map, or use the arrow keys on this tab (← → k_r, ↑ ↓ k_θ, one cell), " +
-      "to set the springs.";
-    source("regime_now").data = {k_r: [state.k_r], k_theta: [state.k_theta]};
-    document.documentElement.setAttribute("data-map", loadLabel(load) + "/" + mapQuantity);
-  }
+  var map = null;  // mapview.js, once the document is there
+  function drawMap() { map.draw(); }
 
   // ------------------------------------------------------------ projector mode
+  var projectorShown = false;  // the look the page was packed with: the screen's
   function applyProjector() {
     var on = state.projector;
+    if (on === projectorShown) return;  // (setting the same styles again repaints all)
+    projectorShown = on;
     CONFIG.projector.forEach(function (c) {
       var m = doc.get_model_by_id(c[0]), attrs = {};
       if (!m) return;
@@ -305,15 +327,23 @@
   }
 
   // ------------------------------------------------------------ the API
-  var lastArrays = null;
+  var lastArrays = null, arraysDue = false;
   function compute() {
+    keyClock.take();  // the key press (if any) whose redraw is timed
     contactChannel.request(contactInput(state));
     if (arraysKey(state) !== lastArrays) {
       lastArrays = arraysKey(state);
-      sweepChannel.request(sweepInput(state));
-      uniformChannel.request(uniformInput(state));
+      arraysDue = true;  // requested once the support is drawn (countDrawn)
     }
-    drawMap();
+    later.put("map", drawMap);
+  }
+  /** The orientation sweep and the uniform array for the current state, after the
+   * support's contact is drawn: on a small machine their workers would slow it down. */
+  function requestArrays() {
+    if (!arraysDue) return;
+    arraysDue = false;
+    sweepChannel.request(sweepInput(state));
+    uniformChannel.request(uniformInput(state));
   }
 
   function setState(partial, fromControl) {
@@ -337,12 +367,17 @@
       if (!inRange(k, v)) throw new RangeError(k + "=" + v + " is not " + CONTROLS[k].expected);
       if (state[k] !== v) { state[k] = v; changed = true; }
     });
-    history.replaceState(null, "", fragment(state));
+    var link = fragment(state);
+    later.put("link", function () { history.replaceState(null, "", link); });
     if (!fromControl) syncControls();
     if (changed) compute();
   }
 
   explorer.simulate = function (o) { return KERNEL.simulate(o); };
+  /** True while the support's contact is being computed or drawn (texts included). */
+  explorer.pending = function () {
+    return !!(contactChannel.inFlight || contactChannel.pending) || later.waiting();
+  };
   Object.defineProperty(explorer, "state", {
     get: function () { return Object.assign({}, state); }, enumerable: true
   });
@@ -363,7 +398,9 @@
     setState(partial, true);
   };
   explorer._tab = function (index) {
-    if (syncing || !doc) return;
+    if (!doc) return;
+    showTab(index);
+    if (syncing) return;
     setState({tab: CONFIG.offline_tabs[index]}, true);
   };
   explorer._projector = function (on) {
@@ -375,11 +412,8 @@
     if (syncing || !doc) return;
     setState({beta_mode: mode}, true);
   };
-  explorer._mapQuantity = function (q) { mapQuantity = q; if (doc) drawMap(); };
-  explorer._mapTap = function (x, y) {  // a click on the regime map: its k_r, k_theta
-    if (!doc || !isFinite(x) || !isFinite(y)) return;
-    setState({k_r: clampRound("k_r", x), k_theta: clampRound("k_theta", y)}, false);
-  };
+  explorer._mapQuantity = function (q) { if (map) map.quantity(q); };
+  explorer._mapTap = function (x, y) { if (map) map.tap(x, y); };  // a click on the map
   explorer._polarTap = function (x, y) {  // a click on a polar diagram: its angle is theta0
     if (!doc || (x === 0 && y === 0)) return;
     var deg = Math.round((Math.atan2(y, x) * 180 / Math.PI + 360) % 360);
@@ -387,27 +421,6 @@
   };
   explorer.parseFragment = parseFragment;
   window.explorer = explorer;
-
-  /** Arrow keys on the map tab move the springs one cell of the shipped map's grid. */
-  function mapKeys(e) {
-    if (!doc || state.tab !== "map" || e.altKey || e.ctrlKey || e.metaKey) return;
-    var tag = (e.target && e.target.tagName) || "";
-    if (["INPUT", "SELECT", "TEXTAREA", "BUTTON"].indexOf(tag) >= 0) return;
-    var path = e.composedPath ? e.composedPath() : [];
-    if (path.some(function (el) {
-      return el && el.getAttribute && (el.getAttribute("role") === "slider" ||
-        el.getAttribute("role") === "tab" || (el.classList && el.classList.contains("noUi-handle")));
-    })) return;
-    var moves = {ArrowLeft: ["k_r", -1], ArrowRight: ["k_r", 1], ArrowDown: ["k_theta", -1], ArrowUp: ["k_theta", 1]};
-    var move = moves[e.key];
-    if (!move) return;
-    var k = CONFIG.maps.cells.k_r, n = Math.round(Math.sqrt(k.length));
-    var step = Math.pow(CONTROLS.k_r.hi / CONTROLS.k_r.lo, 1 / (n - 1)), partial = {};
-    partial[move[0]] = clampRound(move[0], state[move[0]] * Math.pow(step, move[1]));
-    e.preventDefault();
-    e.stopPropagation();  // not the player's keys: it is on another tab
-    setState(partial, false);
-  }
 
   // The state the file was packed with (the dashboard's download button): used when the
   // link has no fragment of its own.
@@ -427,10 +440,15 @@
     doc.all_models.forEach(function (m) {
       if (m.name) (byName[m.name] = byName[m.name] || []).push(m);
     });
-    [contactChannel, sweepChannel, uniformChannel].forEach(function (c) { c.start(); });
+    map = window.MicropillarMapView(CONFIG, {
+      source: source, model: model, figure: figure, clampRound: clampRound,
+      state: function () { return state; },
+      set: function (partial) { setState(partial, false); }
+    });
+    contactChannel.start();  // the arrays' workers start at their first job
     applyFragment();
     window.addEventListener("hashchange", applyFragment);
-    window.addEventListener("keydown", mapKeys, true);
+    window.addEventListener("keydown", function (e) { map.keys(e); }, true);
   }
 
   (function waitForBokeh() {  // the document is built after the page's scripts ran
