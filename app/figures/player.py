@@ -40,6 +40,9 @@ from bokeh.layouts import column, row
 from bokeh.core.properties import Int
 from bokeh.model import DataModel
 from bokeh.models import Button, ColumnDataSource, CustomJS, Div, Select, Slider, Toggle
+from bokeh.models.dom import HTML
+
+from .live_text import live_div, live_html
 
 __all__ = ["BrowserPlayer", "PlayerFrame", "browser_player", "SPEEDS", "SHORTCUTS"]
 
@@ -74,7 +77,7 @@ if (st === undefined) {
     st.ui_t = now;
     const i = frame.value;
     if (slider.value !== i) slider.setv({value: i}, {sync: false});
-    readout.setv({text: `frame ${i + 1} / ${n} · ${label} = ${timeline.data.t[i].toFixed(2)}`}, {sync: false});
+    readout.setv({html: `frame ${i + 1} / ${n} · ${label} = ${timeline.data.t[i].toFixed(2)}`}, {sync: false});
   };
   // Frames shown; the timer keeps its fractional position, a step or a jump does not.
   st.show = (f, force) => { if (frame.value !== f) { frame.setv({value: f}, {sync: false}); st.drawn += 1; } st.ui(force); };
@@ -189,7 +192,7 @@ class BrowserPlayer:
     first: Button
     speed: Select
     loop: Toggle
-    readout: Div
+    readout: HTML
     shortcuts: Div
     layout: object
     autoplay: bool
@@ -203,7 +206,7 @@ class BrowserPlayer:
             raise ValueError(f"times has {times.size} values; give one per frame "
                              f"({self.n_frames})")
         self.timeline.data = {"t": times}
-        self.readout.text = _readout(0, self.n_frames, times[0], "τ" if label is None else label)
+        self.readout.html = _readout(0, self.n_frames, times[0], "τ" if label is None else label)
 
     @property
     def n_frames(self) -> int:
@@ -267,8 +270,11 @@ def browser_player(n_frames: int, times=None, fps: float = 30.0, autoplay: bool 
                     html_attributes={"title": "Start again at the end (L)"}, **big)
     # The frames' times live in a data source, so a new trajectory can relabel them.
     timeline = ColumnDataSource({"t": times}, name=f"{name}_times")
-    readout = Div(text=_readout(0, n_frames, times[0], time_label), width=210,
-                  name=f"{name}_readout", styles={"font-size": "15px"})
+    # The readout's text is a dom.HTML node (app.figures.live_text): a change redraws it
+    # alone, not the page.
+    readout_box = live_div(_readout(0, n_frames, times[0], time_label), name=f"{name}_readout",
+                           width=210, styles={"font-size": "15px"})
+    readout = live_html(readout_box)
     shortcuts = Div(text="Keys: " + " · ".join(f"<b>{k}</b> {v}" for k, v in SHORTCUTS),
                     name=f"{name}_keys", styles={"font-size": "13px", "color": "#444",
                                                  # hidden where the page says so (projector)
@@ -305,11 +311,11 @@ def browser_player(n_frames: int, times=None, fps: float = 30.0, autoplay: bool 
         slider.width = None
         slider.min_width = 160
         slider.stylesheets = [HANDLE_CSS]  # touch-sized (phones, projectors)
-        layout = column(row(play, back, forward, first, speed, loop_t, slider, readout, **wrap),
+        layout = column(row(play, back, forward, first, speed, loop_t, slider, readout_box, **wrap),
                         shortcuts, name=f"{name}_layout", sizing_mode="stretch_width")
     else:
         layout = column(row(play, back, forward, first, speed, loop_t),
-                        row(slider, readout), shortcuts, name=f"{name}_layout")
+                        row(slider, readout_box), shortcuts, name=f"{name}_layout")
     return BrowserPlayer(frame=frame, slider=slider, play=play, back=back, forward=forward, first=first,
                          speed=speed, loop=loop_t, readout=readout, shortcuts=shortcuts,
                          layout=layout, autoplay=bool(autoplay), _ready_js=ready_js,

@@ -134,7 +134,7 @@
     var frames = VIEWS.supportFrames(s, p, CONFIG);
     source("support_player_times").data = {t: frames.support_frames.tau};
     var i = Math.min(model("support_player_frame").value, CONFIG.n_frames - 1);
-    model("support_player_readout").text = "frame " + (i + 1) + " / " + CONFIG.n_frames + " · τ = " +
+    model("support_player_readout").html = "frame " + (i + 1) + " / " + CONFIG.n_frames + " · τ = " +
       frames.support_frames.tau[i].toFixed(2);
     // New data redraw the current frame (the player's callbacks follow these sources).
     source("energy_live_frames").data = energies.frames;
@@ -221,7 +221,7 @@
   function autoplay() {  // play=1 in the link, unless the reader asked for reduced motion
     if (!state.play) return;
     if (reducedMotion()) {
-      model("support_player_readout").text += " · autoplay off (reduced motion)";
+      model("support_player_readout").html += " · autoplay off (reduced motion)";
       return;
     }
     model("support_player_play").active = true;
