@@ -374,7 +374,7 @@ const pnow = performance.now();
 clearTimeout(live.__later);
 if (!(pnow - (live.__t || 0) < panel_ms)) { live.__t = pnow; panel(); }
 else live.__later = setTimeout(panel, panel_ms);
-// The readout is DOM (layout work): at most every ui_ms, and once more when it settles.
+// The readout is DOM (a text node): at most every ui_ms, and once more when it settles.
 const write = () => {
 // As readout_text in Python: after the slab has left the grid, the last counted frame g.
 const g = s.last[f], nc = s.N_c[g], nc0 = s.N_c0[g], ftx = s.ftx[g], run = s.run[g];

@@ -126,8 +126,8 @@ def live_energy_figure(energies: dict, player, width: int = 420, height: int = 3
         let base = 0;
         terms.forEach((k, j) => { b.bottom[j + 1] = base; base += e[k][i]; b.top[j + 1] = base; });
         bars.change.emit();
-        // The readout is DOM: each change lays the page out again (~40 ms a frame), so
-        // while playing it is written at most every ui_ms, and once more when it settles.
+        // The readout is DOM (a text node, app.figures.live_text): while playing it is
+        // written at most every ui_ms, and once more when it settles.
         const write = () => readout.setv({html: `τ = ${e.tau[i].toFixed(2)}: W = ` +
           `${e.W[i].toFixed(3)} = ` + terms.map((k) => `${k} ${e[k][i].toFixed(3)}`).join(" + ")
           + "  (m V₀²)"}, {sync: false});

@@ -15,8 +15,9 @@ attaching their own ``CustomJS`` to it::
 
 Inside Panel, where the Bokeh document is Panel's, call ``player.ready()`` from the server
 once the page is loaded (``pn.state.onload``): it changes a property the browser watches.
-The slider and readout are DOM elements whose updates cost layout work; while playing
-they follow at most every ``UI_MS`` ms, the figures every frame.
+The slider and readout follow a playing animation at most every ``UI_MS`` ms, the figures
+every frame. The readout is a text node (``app.figures.live_text``), not a ``Div``'s text:
+a ``Div`` that changes has BokehJS lay out and repaint the whole page.
 Keyboard: Space play/pause, <- -> one frame, Up/Down faster/slower, Home first frame,
 L loop. The keys go to the player last used (or last made ready) and are ignored while an
 input, select or text area has the focus; Space and Enter on a focused button press that
@@ -62,7 +63,7 @@ PLAY_CSS = (f".bk-btn-success {{ background-color: {PLAY_FILL}; border-color: {P
 # The player's state lives in the page (window.__mpf_players, keyed by the frame model's
 # id); every callback first makes sure it exists, so whichever runs first sets it up.
 # The frame model has no view: changing it costs only the figures that follow it. The
-# slider and the readout (DOM, with layout work) follow at most every UI_MS while playing.
+# slider and the readout (DOM) follow at most every UI_MS while playing.
 _PRELUDE = f"""
 const CONTROL = {CONTROL_CLASS!r};
 """ + """
@@ -164,9 +165,9 @@ HANDLE_CSS = """
 #: The speed menu as tall as the page's buttons (44 px on a phone and in projector mode).
 SELECT_CSS = "select { min-height: var(--mp-button, 31px) !important; }"
 
-#: Longest interval between updates of the slider and readout while playing [ms]. Each
-#: readout change lays the whole page out again (Bokeh recomputes the layout from the
-#: root when a Div's text changes): half the page's work per frame at 8 updates a second.
+#: Longest interval between updates of the slider and readout while playing [ms]: DOM
+#: work (style, layout) that the frames need more. (The readouts are text nodes: as a
+#: Div's text, each change laid the whole page out again, half the page's work.)
 UI_MS = 250
 #: Milliseconds after a served page is up before the player says it is ready (``ready``): the
 #: change must reach the browser after the player's models, which a page sends a turn or
