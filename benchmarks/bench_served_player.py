@@ -10,7 +10,8 @@ figures (changes of its ``PlayerFrame``) over ``--seconds`` and how far the fram
 moved (the player skips frames to keep the motion in real time when it cannot draw them
 all). The standalone pages' ceilings are in ``bench_animation.py``. Run it also under
 ``benchmarks/busy_core.py --`` for a machine with one core taken. Prints median [min-max]
-over ``--repeats`` windows.
+over ``--repeats`` windows. To compare two checkouts in the same conditions, run this
+script alternately with ``PYTHONPATH`` set to each (the server imports ``app`` from there).
 """
 from __future__ import annotations
 
@@ -20,6 +21,8 @@ import statistics
 import sys
 from pathlib import Path
 
+_HAS_MODEL_JS = """(name) => Bokeh.documents.some((d) => [...d.all_models]
+  .some((m) => m.name === name))"""
 _COUNT_JS = """async ([prefix, ms]) => {
   let play = null;
   for (const d of Bokeh.documents) for (const m of d.all_models)
@@ -56,10 +59,14 @@ def main(argv=None) -> int:
     width, height = (int(v) for v in args.size.split("x"))
     load0 = os.getloadavg()
     runs = []
-    with serving.serve_app(Path("bench-out") / "served-player.log") as base, sync_playwright() as pw:
+    out = Path("bench-out")
+    out.mkdir(exist_ok=True)
+    with serving.serve_app(out / "served-player.log") as base, sync_playwright() as pw:
         browser = serving.launch_chromium(pw)
         page = browser.new_page(viewport={"width": width, "height": height})
         tools.wait_for_app(page, f"{base}/app?tab={args.tab}{args.query}")
+        # The Array tab's player comes with its computed motion, after the page.
+        page.wait_for_function(_HAS_MODEL_JS, arg=f"{args.tab}_player_play", timeout=180_000)
         tools.settle(page)
         page.wait_for_timeout(2000)
         for _ in range(args.repeats):

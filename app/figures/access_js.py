@@ -5,7 +5,9 @@ Python, so a script walks the shadow roots, again whenever one of them changes.
 
 * ``WATCH_ROOTS_JS`` defines ``watchRoots(tend, done)``: calls ``tend(root)`` for the
   document and every shadow root now and after each change (debounced, 100 ms), then
-  ``done(roots)``; returns a function that stops watching;
+  ``done(roots)``; returns a function that stops watching. Changes inside an element of
+  class ``LIVE_CLASS`` (a player's readouts, rewritten while it plays: plain text, no
+  control) are not changes of the page's structure and start no walk;
 * ``HANDLE_NAMES_JS`` defines ``nameHandles(root)``: names each slider handle
   (``role="slider"``) after its slider's visible title, so a screen reader says what it
   sets ("frame", "k_r radial stiffness (log)"; a range slider's two handles: "..., from",
@@ -13,12 +15,23 @@ Python, so a script walks the shadow roots, again whenever one of them changes.
 """
 from __future__ import annotations
 
-WATCH_ROOTS_JS = """
+#: CSS class of the boxes of text that follow a playing animation (``app.figures.live_text``).
+LIVE_CLASS = "mp-live-text"
+
+WATCH_ROOTS_JS = f"""
+const LIVE_CLASS = {LIVE_CLASS!r};
+""" + """
 function watchRoots(tend, done) {
   const watched = new WeakSet();
   let pending = null;
-  const observer = new MutationObserver(() => {
-    if (pending === null) pending = setTimeout(scan, 100);
+  // Inside a live text box (its shadow root's host has LIVE_CLASS): only text changes.
+  const live = (record) => {
+    const root = record.target.getRootNode && record.target.getRootNode();
+    const host = root && root.host;
+    return !!(host && host.classList && host.classList.contains(LIVE_CLASS));
+  };
+  const observer = new MutationObserver((records) => {
+    if (pending === null && !records.every(live)) pending = setTimeout(scan, 100);
   });
   function scan() {
     pending = null;

@@ -15,6 +15,7 @@ from bokeh.models import (Arrow, BoxAnnotation, ColorBar, CustomJS, Div, Label,
 
 from .array_readout import last_counted, readout_text, settled_mean
 from .common import BLACK, BLUE, GREEN, GREY, ORANGE, VERMILION, new_figure, source
+from .live_text import live_div, live_html
 from .player import UI_MS
 
 __all__ = ["array_scene", "array_frames", "direction_palette", "slab_half_width", "view_x",
@@ -147,8 +148,10 @@ def array_scene(motion, player, width: int = 1000, panel_height: int = 220,
     colorbar = _colorbar_figure(mapper, 340 if responsive else width, responsive)
 
     panel = _panel(motion, width, panel_height)
-    readout = Div(text=_readout(motion, 0), name="array_readout", width=width, height=52,
-                  styles={"font-size": TEXT_SIZE, "min-height": "2.6em"})
+    # Text only (app.figures.live_text): a change redraws the readout, not the page.
+    readout_box = live_div(_readout(motion, 0), name="array_readout", width=width, height=52,
+                           styles={"font-size": TEXT_SIZE, "min-height": "2.6em"})
+    readout = live_html(readout_box)
     frames = source("array_frames", array_frames(motion))
     series = source("array_series", {"t": motion.t, **_shown_ratios(motion),
                                      "N_c": motion.N_c.astype(float),
@@ -193,7 +196,7 @@ def array_scene(motion, player, width: int = 1000, panel_height: int = 220,
                     "blue</b> turned towards +y, <b style='color:#9E6600'>orange</b> towards −y, "
                     "<b style='color:#767676'>grey</b> not in contact. Released supports are drawn "
                     "at rest."), width=width, name="array_key", styles={"font-size": TEXT_SIZE})
-    parts = [readout, fig, colorbar, key, panel, panel_key]
+    parts = [readout_box, fig, colorbar, key, panel, panel_key]
     if responsive:
         # Widths follow the page, heights stay: on a narrow screen the top view keeps
         # equal scales by following the slab (see _FRAME_JS), the panel just narrows.
@@ -371,7 +374,7 @@ const pnow = performance.now();
 clearTimeout(live.__later);
 if (!(pnow - (live.__t || 0) < panel_ms)) { live.__t = pnow; panel(); }
 else live.__later = setTimeout(panel, panel_ms);
-// The readout is DOM (layout work): at most every ui_ms, and once more when it settles.
+// The readout is DOM (a text node): at most every ui_ms, and once more when it settles.
 const write = () => {
 // As readout_text in Python: after the slab has left the grid, the last counted frame g.
 const g = s.last[f], nc = s.N_c[g], nc0 = s.N_c0[g], ftx = s.ftx[g], run = s.run[g];
@@ -381,7 +384,7 @@ const mean = Number.isFinite(run)
   : `mean over the steady window: from τ = ${steady[0].toFixed(1)}`;
 const now = g === f ? `N_c = ${s.N_c[f]}</b> supports in contact`
   : `N_c = ${s.N_c[f]}</b> still in contact; the slab has left the grid, last values (τ = ${s.t[g].toFixed(1)}): N_c = ${nc}`;
-readout.setv({text: `τ = ${t.toFixed(1)} · <b>${now}, N_c0 = ${nc0} under a rigid slab: ` +
+readout.setv({html: `τ = ${t.toFixed(1)} · <b>${now}, N_c0 = ${nc0} under a rigid slab: ` +
   `N_c/N_c0 = ${nc0 ? fmt(nc / nc0, 2) : "–"}, β = N_c0/N_c = ${nc ? fmt(nc0 / nc, 2) : "–"} · ` +
   `F_T,x/(μ₀F_N) instantaneous ${fmt(ftx, 3)}, ${mean}`}, {sync: false});
 };

@@ -14,11 +14,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from bokeh.models import CustomJS, Div, Range1d
+from bokeh.models import CustomJS, Range1d
 
 from model.contact.friction import mu
 
 from .common import BLACK, annotation, new_figure, source, sources
+from .live_text import live_div, live_html
 from .histories import ENERGY_COLORS, ENERGY_LABELS, ENERGY_TERMS
 from .player import UI_MS
 from .scene import (ARROW_SCALE, FORCE_COLOR, LABEL_ROOM_X, LABEL_ROOM_Y, SLAB_COLOR, STRIPES,
@@ -112,8 +113,9 @@ def live_energy_figure(energies: dict, player, width: int = 420, height: int = 3
     legend.glyph_width = 12
     fig.center = [m for m in fig.center if m is not legend]
     fig.add_layout(legend, "right")
-    readout = Div(text=_energy_text(energies, 0), name="energy_live_readout", width=width,
-                  styles={"font-size": "14px"})
+    readout_box = live_div(_energy_text(energies, 0), name="energy_live_readout", width=width,
+                           styles={"font-size": "14px"})
+    readout = live_html(readout_box)
     data = frames if frames is not None else source(
         "energy_live_frames", energy_live_data(energies)["energy_live_frames"])
     # Drawn when the frame changes and when new histories arrive (at the current frame).
@@ -124,9 +126,9 @@ def live_energy_figure(energies: dict, player, width: int = 420, height: int = 3
         let base = 0;
         terms.forEach((k, j) => { b.bottom[j + 1] = base; base += e[k][i]; b.top[j + 1] = base; });
         bars.change.emit();
-        // The readout is DOM: each change lays the page out again (~40 ms a frame), so
-        // while playing it is written at most every ui_ms, and once more when it settles.
-        const write = () => readout.setv({text: `τ = ${e.tau[i].toFixed(2)}: W = ` +
+        // The readout is DOM (a text node, app.figures.live_text): while playing it is
+        // written at most every ui_ms, and once more when it settles.
+        const write = () => readout.setv({html: `τ = ${e.tau[i].toFixed(2)}: W = ` +
           `${e.W[i].toFixed(3)} = ` + terms.map((k) => `${k} ${e[k][i].toFixed(3)}`).join(" + ")
           + "  (m V₀²)"}, {sync: false});
         const now = performance.now();
@@ -137,7 +139,7 @@ def live_energy_figure(energies: dict, player, width: int = 420, height: int = 3
     data.js_on_change("data", draw)
     from bokeh.layouts import column
 
-    return column(fig, readout, name="energy_live_layout")
+    return column(fig, readout_box, name="energy_live_layout")
 
 
 def support_frames(series, params, n_frames: int) -> dict:

@@ -15,8 +15,9 @@ attaching their own ``CustomJS`` to it::
 
 Inside Panel, where the Bokeh document is Panel's, call ``player.ready()`` from the server
 once the page is loaded (``pn.state.onload``): it changes a property the browser watches.
-The slider and readout are DOM elements whose updates cost layout work; while playing
-they follow at most every ``UI_MS`` ms, the figures every frame.
+The slider and readout follow a playing animation at most every ``UI_MS`` ms, the figures
+every frame. The readout is a text node (``app.figures.live_text``), not a ``Div``'s text:
+a ``Div`` that changes has BokehJS lay out and repaint the whole page.
 Keyboard: Space play/pause, <- -> one frame, Up/Down faster/slower, Home first frame,
 L loop. The keys go to the player last used (or last made ready) and are ignored while an
 input, select or text area has the focus; Space and Enter on a focused button press that
@@ -40,6 +41,9 @@ from bokeh.layouts import column, row
 from bokeh.core.properties import Int
 from bokeh.model import DataModel
 from bokeh.models import Button, ColumnDataSource, CustomJS, Div, Select, Slider, Toggle
+from bokeh.models.dom import HTML
+
+from .live_text import live_div, live_html
 
 __all__ = ["BrowserPlayer", "PlayerFrame", "browser_player", "SPEEDS", "SHORTCUTS"]
 
@@ -59,7 +63,7 @@ PLAY_CSS = (f".bk-btn-success {{ background-color: {PLAY_FILL}; border-color: {P
 # The player's state lives in the page (window.__mpf_players, keyed by the frame model's
 # id); every callback first makes sure it exists, so whichever runs first sets it up.
 # The frame model has no view: changing it costs only the figures that follow it. The
-# slider and the readout (DOM, with layout work) follow at most every UI_MS while playing.
+# slider and the readout (DOM) follow at most every UI_MS while playing.
 _PRELUDE = f"""
 const CONTROL = {CONTROL_CLASS!r};
 """ + """
@@ -74,7 +78,7 @@ if (st === undefined) {
     st.ui_t = now;
     const i = frame.value;
     if (slider.value !== i) slider.setv({value: i}, {sync: false});
-    readout.setv({text: `frame ${i + 1} / ${n} · ${label} = ${timeline.data.t[i].toFixed(2)}`}, {sync: false});
+    readout.setv({html: `frame ${i + 1} / ${n} · ${label} = ${timeline.data.t[i].toFixed(2)}`}, {sync: false});
   };
   // Frames shown; the timer keeps its fractional position, a step or a jump does not.
   st.show = (f, force) => { if (frame.value !== f) { frame.setv({value: f}, {sync: false}); st.drawn += 1; } st.ui(force); };
@@ -161,9 +165,9 @@ HANDLE_CSS = """
 #: The speed menu as tall as the page's buttons (44 px on a phone and in projector mode).
 SELECT_CSS = "select { min-height: var(--mp-button, 31px) !important; }"
 
-#: Longest interval between updates of the slider and readout while playing [ms]. Each
-#: readout change lays the whole page out again (Bokeh recomputes the layout from the
-#: root when a Div's text changes): half the page's work per frame at 8 updates a second.
+#: Longest interval between updates of the slider and readout while playing [ms]: DOM
+#: work (style, layout) that the frames need more. (The readouts are text nodes: as a
+#: Div's text, each change laid the whole page out again, half the page's work.)
 UI_MS = 250
 #: Milliseconds after a served page is up before the player says it is ready (``ready``): the
 #: change must reach the browser after the player's models, which a page sends a turn or
@@ -189,7 +193,7 @@ class BrowserPlayer:
     first: Button
     speed: Select
     loop: Toggle
-    readout: Div
+    readout: HTML
     shortcuts: Div
     layout: object
     autoplay: bool
@@ -203,7 +207,7 @@ class BrowserPlayer:
             raise ValueError(f"times has {times.size} values; give one per frame "
                              f"({self.n_frames})")
         self.timeline.data = {"t": times}
-        self.readout.text = _readout(0, self.n_frames, times[0], "τ" if label is None else label)
+        self.readout.html = _readout(0, self.n_frames, times[0], "τ" if label is None else label)
 
     @property
     def n_frames(self) -> int:
@@ -267,8 +271,11 @@ def browser_player(n_frames: int, times=None, fps: float = 30.0, autoplay: bool 
                     html_attributes={"title": "Start again at the end (L)"}, **big)
     # The frames' times live in a data source, so a new trajectory can relabel them.
     timeline = ColumnDataSource({"t": times}, name=f"{name}_times")
-    readout = Div(text=_readout(0, n_frames, times[0], time_label), width=210,
-                  name=f"{name}_readout", styles={"font-size": "15px"})
+    # The readout's text is a dom.HTML node (app.figures.live_text): a change redraws it
+    # alone, not the page.
+    readout_box = live_div(_readout(0, n_frames, times[0], time_label), name=f"{name}_readout",
+                           width=210, styles={"font-size": "15px"})
+    readout = live_html(readout_box)
     shortcuts = Div(text="Keys: " + " · ".join(f"<b>{k}</b> {v}" for k, v in SHORTCUTS),
                     name=f"{name}_keys", styles={"font-size": "13px", "color": "#444",
                                                  # hidden where the page says so (projector)
@@ -305,11 +312,11 @@ def browser_player(n_frames: int, times=None, fps: float = 30.0, autoplay: bool 
         slider.width = None
         slider.min_width = 160
         slider.stylesheets = [HANDLE_CSS]  # touch-sized (phones, projectors)
-        layout = column(row(play, back, forward, first, speed, loop_t, slider, readout, **wrap),
+        layout = column(row(play, back, forward, first, speed, loop_t, slider, readout_box, **wrap),
                         shortcuts, name=f"{name}_layout", sizing_mode="stretch_width")
     else:
         layout = column(row(play, back, forward, first, speed, loop_t),
-                        row(slider, readout), shortcuts, name=f"{name}_layout")
+                        row(slider, readout_box), shortcuts, name=f"{name}_layout")
     return BrowserPlayer(frame=frame, slider=slider, play=play, back=back, forward=forward, first=first,
                          speed=speed, loop=loop_t, readout=readout, shortcuts=shortcuts,
                          layout=layout, autoplay=bool(autoplay), _ready_js=ready_js,

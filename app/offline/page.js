@@ -172,8 +172,11 @@
     explorer.result = r;
     // After the paint: the texts (each lays its root out again) and the polar marker.
     var i = Math.min(model("support_player_frame").value, CONFIG.n_frames - 1);
-    setText("support_player_readout", "frame " + (i + 1) + " / " + CONFIG.n_frames + " · τ = " +
-      frames.support_frames.tau[i].toFixed(2));
+    var readout = "frame " + (i + 1) + " / " + CONFIG.n_frames + " · τ = " +
+      frames.support_frames.tau[i].toFixed(2);
+    later.put("support_player_readout", function () {  // a live node: redraws only itself
+      model("support_player_readout").html = readout;
+    });
     later.put("headline", writeHeadline);
     setText("status", "one contact: τ_out = " + r.t_out.toPrecision(4) + " r₀/V₀, " +
       r.stats.n_steps + " steps, computed in " + ms + " ms in the browser" +
@@ -261,8 +264,7 @@
   function autoplay() {  // play=1 in the link, unless the reader asked for reduced motion
     if (!state.play) return;
     if (reducedMotion()) {
-      var readout = model("support_player_readout");
-      readout.text += " · autoplay off (reduced motion)";
+      model("support_player_readout").html += " · autoplay off (reduced motion)";
       return;
     }
     model("support_player_play").active = true;

@@ -87,7 +87,7 @@ def test_array_plays_and_the_contact_count_changes(pages, open_page):
     assert _in_contact(page) == int(motion.N_c[state["frame"]])
     live = page.evaluate("() => Bokeh.documents[0].get_model_by_name('array_live').data.t.length")
     assert live == state["frame"] + 1
-    readout = page.evaluate("() => Bokeh.documents[0].get_model_by_name('array_readout').text")
+    readout = page.evaluate("() => Bokeh.documents[0].get_model_by_name('array_readout').html")
     assert f"N_c = {int(motion.N_c[state['frame']])}</b>" in readout
 
 

@@ -16,7 +16,7 @@ def _state(page):
     return page.evaluate("""() => {
       const d = Bokeh.documents[0], f = d.get_model_by_name("array_player_frame");
       const r = d.get_model_by_name("array_readout");
-      return f ? {frame: f.value, readout: r ? r.text : ""} : null; }""")
+      return f ? {frame: f.value, readout: r ? r.html : ""} : null; }""")
 
 
 def _wait(page, predicate, timeout_ms=60_000):

@@ -193,7 +193,7 @@ def test_friction_histories_and_energy_bars_are_the_kernels(offline):
     result = offline.page.evaluate("explorer.result")
     assert bars["top"][0] == pytest.approx(result["W"], rel=1e-9)  # W so far, at tau_out
     assert bars["top"][-1] == pytest.approx(result["W"] - result["energy_residual"], rel=1e-6)
-    assert "τ = " in offline.text("energy_live_readout")
+    assert "τ = " in offline.model("energy_live_readout", "html")
     assert offline.errors == []
 
 
