@@ -35,7 +35,8 @@ class HistogramUpload(pn.viewable.Viewer):
 
     def __init__(self, **params):
         super().__init__(**params)
-        self.file = pn.widgets.FileInput(accept=".csv,.txt,text/csv,text/plain", width=300,
+        self.file = pn.widgets.FileInput(name="Orientation histogram (CSV)",
+                                         accept=".csv,.txt,text/csv,text/plain", width=300,
                                          margin=(2, 5), css_classes=["design-histogram-file"],
                                          stylesheets=[INPUT_CSS],
                                          description=f"{FORMAT}; at most "
