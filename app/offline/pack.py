@@ -36,6 +36,7 @@ from model.controls import CONTROLS, DEFAULT_REGIME
 from model.friction import mu0
 from model.params import REGIMES
 
+from ..figures.access_js import PAGE_SCRIPT, mark_figures
 from ..figures.arrays import AVERAGE_COLUMNS
 from ..texts import AVERAGE_NAMES, FELT_AVERAGE, MECHANISMS
 from ..urlstate import TABS
@@ -277,12 +278,14 @@ def _base_page() -> str:
     doc = Document()
     doc.add_root(_layout(cfg, figs, polar, regime_map))
     doc.title = TITLE
+    mark_figures(doc)  # named and described for screen readers (PAGE_SCRIPT)
     figs["player"].install(doc)  # the player's keyboard shortcuts (no autoplay)
     html = _without_fetches(file_html(doc, resources=INLINE, title=TITLE))
     here = resources.files(__package__)
     extra = (_script("mp-config", json.dumps(cfg).replace("</", "<\\/"), "application/json")
              + "".join(_script(f"mp-{name}", (here / f"{name}.js").read_text(encoding="utf-8"))
-                       for name in SCRIPTS))
+                       for name in SCRIPTS)
+             + PAGE_SCRIPT)  # slider handles and figures named for screen readers
     head_extra = ('<meta name="viewport" content="width=device-width, initial-scale=1">\n'
                   '<meta http-equiv="Content-Security-Policy" content="default-src \'none\'; '
                   'script-src \'unsafe-inline\' \'unsafe-eval\' blob:; worker-src blob:; '
