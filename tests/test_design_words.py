@@ -1,15 +1,13 @@
-"""The Design tab's figures in words (app/views/design_words.py): every number said is the
-design result's (two designs, two texts with their own numbers), never fixed per preset."""
-import math
+"""The Design tab's figures in words (app/views/design_words.py; its polar diagram:
+tests/test_plot_words.py): every number said is the design result's (two designs, two
+texts with their own numbers), never fixed per preset."""
 import re
-from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 from app import worker
-from app.views.design_words import (design_map_description, design_polar_description,
-                                    law_description, speeds_description)
+from app.views.design_words import design_map_description, law_description, speeds_description
 from model import FrictionCurve, compare_friction
 from model.friction_fit import fit_friction
 from model.friction_law import FrictionLaw
@@ -54,32 +52,6 @@ def test_two_designs_are_said_differently():
         PillarDesign.example(V0=v)), _array(0.9)) for v in ("1 m/s", "300 m/s"))
     assert slow != fast
     assert "stiff regime" in slow and "stiff regime" not in fast
-
-
-def _sweep(shift_deg: float, k_r: float):
-    theta = (np.arange(72) + 0.5) * math.pi / 72
-    ftx = 1.0 - 0.3 * np.sin(theta - math.radians(shift_deg)) ** 2
-    return SimpleNamespace(columns={"theta0": theta, "FTx_over_mu0FN": ftx},
-                           settings={"k_r": k_r, "k_theta": 40.0, "F_N": 4.4})
-
-
-@pytest.mark.parametrize("shift, k_r", [(0.0, 553.0), (30.0, 5.5)])
-def test_the_polar_words_are_the_curves_extremes_the_distribution_and_the_array(shift, k_r):
-    sweep = _sweep(shift, k_r)
-    theta = np.degrees(sweep.columns["theta0"])
-    ftx = sweep.columns["FTx_over_mu0FN"]
-    d = {"family": "vonmises", "mean_deg": 60.0 + shift, "kappa": 2.0}
-    text = design_polar_description(sweep, d, 0.0, _array(0.8 + shift / 100))
-    m = re.search(rf"lowest, {NUMBER}, at θ₀ = {NUMBER}° and highest, {NUMBER}, at "
-                  rf"θ₀ = {NUMBER}°", text)
-    assert _n(m[1]) == pytest.approx(ftx.min(), rel=5e-3)
-    assert _n(m[2]) == pytest.approx(theta[ftx.argmin()], abs=0.51)
-    assert _n(m[3]) == pytest.approx(ftx.max(), rel=5e-3)
-    assert _n(m[4]) == pytest.approx(theta[ftx.argmax()], abs=0.51)
-    assert f"k̃_r = {k_r:.3g}" in text
-    assert f"von Mises about {60 + shift:g}°, κ = 2" in text
-    assert f"the array's F_T,x/(μ₀F_N) = {0.8 + shift / 100:.3g}" in text
-    assert "being computed" in design_polar_description(sweep, d, 0.0, None)
 
 
 @pytest.mark.parametrize("law, V0", [(FrictionLaw(V_s=1e-3), 1.0),
