@@ -62,7 +62,8 @@ def read_upload(data: bytes, filename: str = "", reader=curve_from_text,
 def curve_input(css_class: str, title: str, what: str = "") -> pn.widgets.FileInput:
     """A file input for a friction curve (``FORMAT``) with its visible ``title`` (its name
     for a screen reader too), ``what`` naming whose."""
-    return pn.widgets.FileInput(name=title, accept=".csv,.txt,text/csv,text/plain", width=300,
+    return pn.widgets.FileInput(**caption(title), accept=".csv,.txt,text/csv,text/plain",
+                                width=300,
                                 margin=(2, 5), css_classes=[css_class], stylesheets=[INPUT_CSS],
                                 description=f"{what}{FORMAT}; at most {MAX_POINTS} points")
 
