@@ -14,6 +14,8 @@ in. (The One support tab's words: ``app.motion_words.plots_description``.)
   and the cell of the current springs;
 * ``load_description``: the uniform arrays against F_N (Fig. 6) for the current springs
   and the paper's regimes.
+
+The Design tab's figures: ``app.design_words``.
 """
 from __future__ import annotations
 
@@ -33,12 +35,12 @@ MAP_WORDS = {"5a": "friction F_T,x/(μ₀F_N)", "5b": "D_y/D_x, the sideways ove
 AVERAGE_WORDS = {"paper": "Eq. 10 average", "duration": "duration-weighted average"}
 
 
-def _minus(text: str) -> str:
+def minus(text: str) -> str:
     """Negative numbers with a minus sign (a screen reader says "minus", not "dash")."""
     return re.sub(r"-(?=[0-9.])", "−", text)
 
 
-def _small(x: float) -> str:
+def small(x: float) -> str:
     """A number as said aloud: 3 digits, "nearly 0" below 0.001 (never "2.69e−05")."""
     return "nearly 0" if abs(x) < 1e-3 else f"{x:.3g}"
 
@@ -59,7 +61,7 @@ def array_description(motion, orientation: str) -> str:
     else:
         how = f"every support at θ₀ = {_deg(motion.params.theta0):.0f}°"
     settled = float(m["FTx_over_mu0FN_duration"])
-    return _minus(
+    return minus(
         f"Top view of {motion.n_supports} supports on a {motion.n_rows} × {motion.n_cols} "
         f"grid, {how}, k_r = {motion.params.k_r:.3g}, k_θ = {motion.params.k_theta:.3g}, "
         f"F_N = {motion.params.F_N:.3g}, under a slab sliding along +x; below it the live "
@@ -69,7 +71,7 @@ def array_description(motion, orientation: str) -> str:
         f"(β = {float(m['beta']):.3g}).")
 
 
-def _extreme(theta0_deg: np.ndarray, values: np.ndarray, pick) -> tuple[float, float]:
+def extreme(theta0_deg: np.ndarray, values: np.ndarray, pick) -> tuple[float, float]:
     """(value, theta0 in degrees) of the smallest or largest (``pick``) finite value."""
     finite = np.isfinite(values)
     i = int(np.flatnonzero(finite)[pick(values[finite])])
@@ -89,10 +91,10 @@ def polar_description(sweep, support=None) -> str:
     fty = np.asarray(cols["FTy_over_mu0FN"], float)
     if not (np.isfinite(ftx).any() and np.isfinite(dydx).any() and np.isfinite(fty).any()):
         return "The polar diagrams have no finished orientation to show."
-    low, at_low = _extreme(theta, ftx, np.argmin)
-    high, at_high = _extreme(theta, ftx, np.argmax)
-    d_low, d_high = (_small(float(np.nanmin(dydx))), _small(float(np.nanmax(dydx))))
-    side, at_side = _extreme(theta, np.abs(fty), np.argmax)
+    low, at_low = extreme(theta, ftx, np.argmin)
+    high, at_high = extreme(theta, ftx, np.argmax)
+    d_low, d_high = (small(float(np.nanmin(dydx))), small(float(np.nanmax(dydx))))
+    side, at_side = extreme(theta, np.abs(fty), np.argmax)
     side = float(fty[np.flatnonzero(theta == at_side)[0]])
     towards = "+y" if side > 0 else "−y"
     text = (f"Polar diagrams (Fig. 11) of arrays whose supports all share one orientation "
@@ -108,7 +110,7 @@ def polar_description(sweep, support=None) -> str:
                  f"F_T,x/(μ₀F_N) = {float(fixed.FTx_over_mu0FN):.3g}, "
                  f"D_y/D_x = {float(fixed.Dy_over_Dx):.3g}, "
                  f"F_T,y/(μ₀F_N) = {float(fixed.FTy_over_mu0FN):.3g}.")
-    return _minus(text)
+    return minus(text)
 
 
 def _nearest(axis: np.ndarray, k: float) -> int | None:
@@ -149,7 +151,7 @@ def map_description(regime_map, quantity: str, average: str, k_r: float,
         text += f" {here}, lie outside the map."
     else:
         text += f" {here}, lie in a cell where it is {values[i, j]:.3g}."
-    return _minus(text)
+    return minus(text)
 
 
 def _curve_values(curve: dict, column: str) -> tuple[list, list]:
@@ -187,4 +189,4 @@ def load_description(curves: dict | None, F_N: float, average: str,
         at_top = [f"{name} {v[l.index(top)]:.3g}" for name, (l, v) in regimes.items()
                   if top in l]
         text += f" The paper's regimes at F_N = {top:.3g}: {', '.join(at_top)}."
-    return _minus(text)
+    return minus(text)

@@ -11,6 +11,7 @@ import pytest
 from app.export import load_csv, map_csv
 from app.plot_words import (array_description, load_description, map_description,
                             polar_description)
+from app.views.design_words import design_polar_description
 from app.views.data_table import column_header, shown_rows, table_html
 from model import Params, csvfile
 from model.arrays.quantities import QUANTITIES
@@ -41,13 +42,25 @@ def test_the_array_words_are_its_settled_force(ftx, nc):
     assert "every support at θ₀ = 30°" in fixed and "uniform" not in fixed
 
 
-def _sweep(shift_deg: float):
+def _sweep(shift_deg: float, k_r: float = 0.5):
     theta = (np.arange(72) + 0.5) * math.pi / 72
     ftx = 1.0 - 0.3 * np.sin(theta - math.radians(shift_deg)) ** 2
     fty = -0.2 * np.sin(2 * (theta - math.radians(shift_deg)))
     return SimpleNamespace(columns={"theta0": theta, "FTx_over_mu0FN": ftx,
                                     "FTy_over_mu0FN": fty, "Dy_over_Dx": 0.1 + 0 * theta},
-                           settings={"k_r": 0.5, "k_theta": 0.2, "F_N": 3.0})
+                           settings={"k_r": k_r, "k_theta": 0.2, "F_N": 3.0})
+
+
+def _assert_extremes(text: str, sweep) -> None:
+    """``text`` says where the sweep's F_T,x/(mu0 F_N) is lowest and highest, and the values."""
+    theta = np.degrees(sweep.columns["theta0"])
+    ftx = sweep.columns["FTx_over_mu0FN"]
+    m = re.search(rf"lowest, {NUMBER}, at θ₀ = {NUMBER}° and highest, {NUMBER}, at "
+                  rf"θ₀ = {NUMBER}°", text)
+    assert _n(m[1]) == pytest.approx(ftx.min(), rel=5e-3)
+    assert _n(m[2]) == pytest.approx(theta[ftx.argmin()], abs=0.51)
+    assert _n(m[3]) == pytest.approx(ftx.max(), rel=5e-3)
+    assert _n(m[4]) == pytest.approx(theta[ftx.argmax()], abs=0.51)
 
 
 @pytest.mark.parametrize("shift", [0.0, 30.0])
@@ -55,13 +68,8 @@ def test_the_polar_words_say_where_the_curves_peak(shift):
     sweep = _sweep(shift)
     text = polar_description(sweep)
     theta = np.degrees(sweep.columns["theta0"])
-    ftx, fty = sweep.columns["FTx_over_mu0FN"], sweep.columns["FTy_over_mu0FN"]
-    m = re.search(rf"lowest, {NUMBER}, at θ₀ = {NUMBER}° and highest, {NUMBER}, at "
-                  rf"θ₀ = {NUMBER}°", text)
-    assert _n(m[1]) == pytest.approx(ftx.min(), rel=5e-3)
-    assert _n(m[2]) == pytest.approx(theta[ftx.argmin()], abs=0.51)
-    assert _n(m[3]) == pytest.approx(ftx.max(), rel=5e-3)
-    assert _n(m[4]) == pytest.approx(theta[ftx.argmax()], abs=0.51)
+    fty = sweep.columns["FTy_over_mu0FN"]
+    _assert_extremes(text, sweep)
     i = np.abs(fty).argmax()
     m = re.search(rf"strongest at θ₀ = {NUMBER}°, {NUMBER}, pushing the slab towards (.y)", text)
     assert _n(m[1]) == pytest.approx(theta[i], abs=0.51)
@@ -72,6 +80,21 @@ def test_the_polar_words_say_where_the_curves_peak(shift):
         FTx_over_mu0FN=0.91, Dy_over_Dx=0.12, FTy_over_mu0FN=-0.05))
     assert ("At the current θ₀ = 40°: F_T,x/(μ₀F_N) = 0.91, D_y/D_x = 0.12, "
             "F_T,y/(μ₀F_N) = −0.05.") in polar_description(sweep, support)
+
+
+@pytest.mark.parametrize("shift, k_r", [(0.0, 553.0), (30.0, 5.5)])
+def test_the_design_polar_words_are_its_curve_distribution_and_array(shift, k_r):
+    """The Design tab's Fig. 11a of the design's springs (app/views/design_words.py)."""
+    sweep = _sweep(shift, k_r)
+    d = {"family": "vonmises", "mean_deg": 60.0 + shift, "kappa": 2.0}
+    ftx = 0.8 + shift / 100
+    array = {"array": {"FTx_over_mu0FN": ftx, "quadrature_error": {}, "bounds": None}}
+    text = design_polar_description(sweep, d, 0.0, array)
+    _assert_extremes(text, sweep)
+    assert f"k̃_r = {k_r:.3g}" in text
+    assert f"von Mises about {60 + shift:g}°, κ = 2" in text
+    assert f"the array's F_T,x/(μ₀F_N) = {ftx:.3g}" in text
+    assert "being computed" in design_polar_description(sweep, d, 0.0, None)
 
 
 @pytest.mark.parametrize("quantity, column", [("5a", "FTx_over_mu0FN"),

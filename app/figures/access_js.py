@@ -11,7 +11,13 @@ Python, so a script walks the shadow roots, again whenever one of them changes.
 * ``HANDLE_NAMES_JS`` defines ``nameHandles(root)``: names each slider handle
   (``role="slider"``) after its slider's visible title, so a screen reader says what it
   sets ("frame", "k_r radial stiffness (log)"; a range slider's two handles: "..., from",
-  "..., to") -- WCAG 4.1.2.
+  "..., to") -- WCAG 4.1.2;
+* ``FIGURE_NAMES_JS`` defines ``nameFigures(roots)``: gives each drawn Bokeh plot marked
+  by ``figure_classes`` (``mark_figures``) ``role="figure"``, its title as its name and,
+  when the page defines
+  ``window.describeFigure(name)``, that text as its description (WCAG 1.1.1) -- for the
+  pages the project writes; the served page's figures are described by
+  ``app.views.access``.
 """
 from __future__ import annotations
 
@@ -77,6 +83,52 @@ function nameHandles(root) {
 }
 """
 
-#: A written page's script: its slider handles named, now and as BokehJS draws them.
-PAGE_SCRIPT = ("<script>\n" + WATCH_ROOTS_JS + HANDLE_NAMES_JS
-               + "window.addEventListener('load', () => watchRoots(nameHandles));\n</script>")
+FIGURE_NAMES_JS = """
+function nameFigures(roots) {
+  if (!window.Bokeh) return;
+  const hosts = [];
+  for (const root of roots) hosts.push(...root.querySelectorAll("[class*='figure-']"));
+  for (const doc of Bokeh.documents) {
+    for (const m of doc.all_models) {
+      if (!m.name || !m.title || typeof m.title.text !== "string" || !m.title.text) continue;
+      const words = window.describeFigure ? window.describeFigure(m.name) : null;
+      for (const el of hosts.filter((h) => h.classList.contains("figure-" + m.name))) {
+        if (el.getAttribute("role") !== "figure") el.setAttribute("role", "figure");
+        if (el.getAttribute("aria-label") !== m.title.text)
+          el.setAttribute("aria-label", m.title.text);
+        if (words && el.getAttribute("aria-description") !== words)
+          el.setAttribute("aria-description", words);
+      }
+    }
+  }
+}
+"""
+
+
+def figure_classes(*figures) -> list[str]:
+    """Mark Bokeh ``figures`` (or layouts) with the class ``figure-<name>`` by which the
+    page's script finds their drawn element (``nameFigures``; in the served page
+    ``app.views.access``); returns those classes."""
+    classes = []
+    for fig in figures:
+        cls = f"figure-{fig.name}"
+        if cls not in fig.css_classes:
+            fig.css_classes = [*fig.css_classes, cls]
+        classes.append(cls)
+    return classes
+
+
+def mark_figures(doc) -> None:
+    """``figure_classes`` for every named plot with a title in the Bokeh document ``doc``
+    (a page the project writes, named and described by ``PAGE_SCRIPT``)."""
+    from bokeh.models import Plot
+    plots = {m for root in doc.roots for m in root.references()
+             if isinstance(m, Plot) and m.name and m.title is not None and m.title.text}
+    figure_classes(*sorted(plots, key=lambda m: m.name))
+
+
+#: A written page's script: its slider handles and figures named, now and as BokehJS draws
+#: them (and again after each change of the page).
+PAGE_SCRIPT = ("<script>\n" + WATCH_ROOTS_JS + HANDLE_NAMES_JS + FIGURE_NAMES_JS
+               + "window.addEventListener('load', () => watchRoots(nameHandles, nameFigures));"
+               "\n</script>")

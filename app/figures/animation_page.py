@@ -17,7 +17,7 @@ from bokeh.resources import INLINE
 from model import simulate_support
 from model.arrays.array_motion import array_motion
 
-from .access_js import PAGE_SCRIPT
+from .access_js import PAGE_SCRIPT, mark_figures
 from .array_scene import array_scene
 from model.contact.friction import mu0
 
@@ -131,7 +131,9 @@ _SERVER_SCRIPT = re.compile(r'<script src="(?![a-z]+:)[^"]*"></script>\n?')
 
 
 def page_html(doc, title: str | None = None) -> str:
-    """Self-contained HTML (Bokeh's JavaScript inline, an inline icon: works offline)."""
+    """Self-contained HTML (Bokeh's JavaScript inline, an inline icon: works offline);
+    its figures named for screen readers (``mark_figures``)."""
+    mark_figures(doc)
     html = _SERVER_SCRIPT.sub("", file_html(doc, INLINE, title or doc.title))
     html = html.replace("<head>", "<head>\n    " + ICON, 1)
     head, body_end, tail = html.rpartition("</body>")  # the page's own, after BokehJS's

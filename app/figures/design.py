@@ -90,6 +90,7 @@ def design_map_figure(regime_map, point: dict | None = None, width: int = 330,
     """Fig. 5a with the design's point and speed line (see the module docstring)."""
     fig = regime_map_figure(regime_map, "5a", "paper", None, width, height)
     fig.title.text = "The design on Fig. 5a (F_N = 1)"  # fits the narrow plot
+    fig.name = "design_map"  # not the Regime map tab's figure
     data, xr, yr = design_map_data(point)
     fig.x_range = Range1d(*xr)
     fig.y_range = Range1d(*yr)
@@ -157,6 +158,7 @@ def design_polar_figure(sweep=None, distribution: dict | None = None, psi_deg: f
     values = [] if sweep is None else sweep.columns["FTx_over_mu0FN"]
     fig = polar_figure("FTx", theta0, values, None, width, height)
     fig.title.text = "Fig. 11a F_T,x/(μ₀F_N); orange: p(θ₀)"  # fits a projected plot
+    fig.name = "design_polar"  # not the Orientation tab's figure
     fig.patch("x", "y", source=source("design_density", data["design_density"]),
               fill_color=ORANGE, fill_alpha=0.3, line_color=ORANGE, line_width=1.5)
     fig.multi_line("xs", "ys", source=source("design_atoms", data["design_atoms"]),

@@ -191,7 +191,8 @@ def extent_data(key: str, axis) -> dict:
 
 def set_extent(fig, axis) -> None:
     """Fit the ranges of a polar figure to a new radial axis."""
-    key = fig.name.removeprefix("polar_")
     for renderer in fig.renderers:
-        if getattr(renderer.data_source, "name", None) == f"polar_{key}_extent":
-            renderer.data_source.data = extent_data(key, axis)[f"polar_{key}_extent"]
+        name = getattr(renderer.data_source, "name", None) or ""
+        if name.startswith("polar_") and name.endswith("_extent"):
+            key = name.removeprefix("polar_").removesuffix("_extent")
+            renderer.data_source.data = extent_data(key, axis)[name]

@@ -113,11 +113,22 @@ if (s === undefined) {
     s.ctx.close();
     s.ctx = s.osc = s.panner = s.amp = null;
   };
-  // The button's pressed state for screen readers (its accessible name is set by the page).
+  // The button's pressed state for screen readers (its accessible name is set by the page):
+  // whether the sound is on, however it changed (a click, the keyboard, the page itself),
+  // on every button drawn for the toggle (a button drawn again later: app.views.access).
   s.pressed = () => {
-    let el = document.activeElement;
-    while (el && el.shadowRoot && el.shadowRoot.activeElement) el = el.shadowRoot.activeElement;
-    if (el && el.tagName === "BUTTON") el.setAttribute("aria-pressed", String(toggle.active));
+    const visit = (root) => {
+      for (const el of root.querySelectorAll("*")) {
+        if (!el.shadowRoot) continue;
+        if (el.getAttribute("data-sound") === toggle.id) {
+          for (const button of el.shadowRoot.querySelectorAll("button"))
+            if (button.getAttribute("aria-pressed") !== String(toggle.active))
+              button.setAttribute("aria-pressed", String(toggle.active));
+        }
+        visit(el.shadowRoot);
+      }
+    };
+    visit(document);
   };
   window.__mp_sound = Object.freeze({
     get running() { return s.ctx !== null && s.ctx.state === "running" && s.level() > 0; },
@@ -140,6 +151,7 @@ def add_sound(player: BrowserPlayer, frames: ColumnDataSource) -> Toggle:
                     name=f"{player.frame.name.removesuffix('_frame')}_sound",
                     css_classes=[CONTROL_CLASS], styles={"font-size": "16px"},
                     html_attributes={"title": SOUND_NAME, "data-aria-label": SOUND_NAME})
+    toggle.html_attributes = {**toggle.html_attributes, "data-sound": toggle.id}
     args = dict(toggle=toggle, play=player.play, frame=player.frame, frames=frames,
                 pitch=list(PITCH_HZ), gain=GAIN, glide=GLIDE_S)
     toggle.js_on_change("active", CustomJS(args=args, code=_PRELUDE + """

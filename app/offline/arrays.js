@@ -1,6 +1,6 @@
-/* Arrays of supports in JavaScript for the offline explorer: ports of model/fixed.py
+/* Arrays of supports in JavaScript for the offline explorer: ports of model/arrays/fixed.py
  * (fixed-orientation arrays, Figs. 9-11, with the self-consistent load factor beta =
- * L0/tau_out(beta) of each orientation) and model/uniform.py (the uniform-orientation
+ * L0/tau_out(beta) of each orientation) and model/arrays/uniform.py (the uniform-orientation
  * array, Figs. 5, 6, 8: the average over theta0 as an adaptive Gauss-Kronrod quadrature
  * on [0, pi] by mirror symmetry, wrapped in the coarse-to-fine solve of beta =
  * L0/<tau_out>(beta)), on top of the kernel's ``simulate`` and solvers.js.
@@ -9,7 +9,7 @@
  *   orientationSweep(base, theta0s, beta) -> Fig. 11's columns over theta0 (each beta
  *       solved by the secant method from the neighbours' beta, extrapolated: 3-6 contacts
  *       per orientation instead of the bracket's 6-12, the same beta to BETA_XTOL)
- *   uniformArray(input, o)            -> the fields of model.uniform.UniformArrayResult
+ *   uniformArray(input, o)            -> the fields of model.arrays.uniform.UniformArrayResult
  *
  * ``beta`` is "self" (solved) or a number. Budgets: every contact has its step budget
  * (the kernel's ``max_steps``), every solver its own (solvers.js), and a uniform array at
@@ -28,10 +28,10 @@
 }(typeof self !== "undefined" ? self : this, function (K, S) {
   "use strict";
 
-  var BETA_XTOL = 1e-8;       // model.fixed.orientation_sweep's beta_xtol
-  var BETA_GTOL = 0.1;        // model.uniform.BETA_GTOL
+  var BETA_XTOL = 1e-8;       // model.arrays.fixed.orientation_sweep's beta_xtol
+  var BETA_GTOL = 0.1;        // model.arrays.uniform.BETA_GTOL
   var MAX_CONTACTS = 100000;  // a uniform array's budget of contacts
-  // Integrand components per orientation (model.uniform.QUANTITIES); then the diagnostics
+  // Integrand components per orientation (model.arrays.uniform.QUANTITIES); then the diagnostics
   // pivot, relative residual, failed.
   var QUANTITIES = ["F_x", "F_y", "t_out", "W", "D_x", "D_y", "U_el", "K", "dtheta_rms", "dr_rms"];
   var FROM = {F_x: "F_mean_x", F_y: "F_mean_y"};
@@ -148,7 +148,7 @@
     };
   }
 
-  function repair(rows) {  // model.uniform._repair: failed rows take the nearest good one's
+  function repair(rows) {  // model.arrays.uniform._repair: failed rows take the nearest good one's
     var good = [];
     rows.forEach(function (r, i) { if (!isNaN(r[0])) good.push(i); });
     if (!good.length || good.length === rows.length) return rows;
@@ -164,7 +164,7 @@
   /**
    * uniformArray({k_r, k_theta, F_N, ...}, {beta: "self" | number, tol: 1e-3, rtol,
    * max_intervals: 256, max_contacts}): the uniform-orientation array, as
-   * model.uniform.uniform_array computes it without a guess (beta on one 15-node
+   * model.arrays.uniform.uniform_array computes it without a guess (beta on one 15-node
    * interval first, then the quadrature at that beta, then Newton and secant steps on
    * the refined partition until |G| <= BETA_GTOL tol beta^2).
    */

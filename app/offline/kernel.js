@@ -25,9 +25,9 @@
   "use strict";
 
   // ---------------------------------------------------------------- constants
-  // Friction law (Eq. 4), repulsion range (Eq. 3), slab length (Eq. 9): model.params.DEFAULTS.
+  // Friction law (Eq. 4), repulsion range (Eq. 3), slab length (Eq. 9): model.contact.params.DEFAULTS.
   var DEFAULTS = {mu_s: 1.3, A: 1.44, B: -20.0, zeta: 10.0, lam: 0.05, L0: 10.0};
-  // What the model accepts: model.params.RANGES and model.options (checked by the tests).
+  // What the model accepts: model.contact.params.RANGES and model.contact.options (checked by the tests).
   // [lo, hi, lo_open, hi_open, meaning]
   var TWO_PI = 2 * Math.PI;
   var RANGES = {
@@ -55,7 +55,7 @@
   var N = 12, N_MOTION = 5;
   var ERROR_SLOTS = [X, Y, VX, VY, THETA, TAU];
   var N_ERROR = 6;
-  // Status codes and texts (model.results.Status).
+  // Status codes and texts (model.contact.results.Status).
   var OK = 0, STEP_BUDGET = 1, TIME_BUDGET = 2, STEP_UNDERFLOW = 3, NONFINITE = 4;
   var STATUS_TEXT = [
     ["contact ended: the slab slid L0 over the support (Eq. 9)", ""],
@@ -64,8 +64,8 @@
     ["step size underflow", "try method='implicit' or a looser rtol"],
     ["non-finite state", "try method='implicit' or a looser rtol"]
   ];
-  var ACCURACY_FACTOR = 3.0;            // model.results.ACCURACY_FACTOR
-  var PIVOT_RADIUS_OVER_LAMBDA = 0.2;   // model.contacts
+  var ACCURACY_FACTOR = 3.0;            // model.contact.results.ACCURACY_FACTOR
+  var PIVOT_RADIUS_OVER_LAMBDA = 0.2;   // model.arrays.contacts
 
   // Sundman regularisation (rhs.py).
   var R_S = 1e-6, DELTA = 1e-14;
@@ -148,7 +148,7 @@
   var KNOWN = ["k_r", "k_theta", "F_N", "theta0", "beta", "mu_s", "A", "B", "zeta", "lam",
                "L0", "rtol", "atol", "max_steps", "tau_max", "samples"];
 
-  /** Validated inputs with their defaults (model.params.Params, model.options). */
+  /** Validated inputs with their defaults (model.contact.params.Params, model.contact.options). */
   function inputs(o) {
     if (o === null || typeof o !== "object") {
       throw new TypeError("simulate() takes one object: {k_r, k_theta, F_N, theta0, ...}");
@@ -177,7 +177,7 @@
     return {params: p, options: opts};
   }
 
-  /** (cos theta0, sin theta0), exactly on the x-axis at multiples of pi (model.params). */
+  /** (cos theta0, sin theta0), exactly on the x-axis at multiples of pi (model.contact.params). */
   function restPosition(theta0) {
     var x = Math.cos(theta0), y = Math.sin(theta0);
     // 4 * ulp(2 pi): the Python test |y| < 4 * math.ulp(2 * math.pi).
@@ -185,7 +185,7 @@
     return [x, y];
   }
 
-  /** Taylor coefficients of mu(s)/(mu_s zeta) in z = zeta s (model.friction). */
+  /** Taylor coefficients of mu(s)/(mu_s zeta) in z = zeta s (model.contact.friction). */
   function seriesCoefficients(A, B) {
     var A2 = A * A;
     var c2 = -A * (A2 + 2 * B + 2) / 6;
@@ -517,7 +517,7 @@
   }
 
   /** Uniform samples of the histories: cubic Hermite through the recorded nodes
-   * (model.support ``_series_from_nodes``, ``_series``). */
+   * (model.contact.support ``_series_from_nodes``, ``_series``). */
   function series(p, rows, samples) {
     var kept = [], top = -Infinity;
     for (var i = 0; i < rows.length; i++) {

@@ -36,6 +36,7 @@ from model.controls import CONTROLS, DEFAULT_REGIME
 from model.contact.friction import mu0
 from model.contact.params import REGIMES
 
+from ..figures.access_js import PAGE_SCRIPT, mark_figures
 from ..figures.arrays import AVERAGE_COLUMNS
 from ..texts import AVERAGE_NAMES, FELT_AVERAGE, MECHANISMS
 from ..defaults import TABS
@@ -305,13 +306,15 @@ def _base_page() -> str:
     for root in _layout(cfg, figs, polar, regime_map).values():
         doc.add_root(root)
     doc.title = TITLE
+    mark_figures(doc)  # named and described for screen readers (PAGE_SCRIPT)
     figs["player"].install(doc)  # the player's keyboard shortcuts (no autoplay)
     html = _without_fetches(file_html(doc, resources=INLINE, title=TITLE,
                                       template=PAGE_TEMPLATE))
     here = resources.files(__package__)
     extra = (_script("mp-config", json.dumps(cfg).replace("</", "<\\/"), "application/json")
              + "".join(_script(f"mp-{name}", (here / f"{name}.js").read_text(encoding="utf-8"))
-                       for name in SCRIPTS))
+                       for name in SCRIPTS)
+             + PAGE_SCRIPT)  # slider handles and figures named for screen readers
     head_extra = ('<meta name="viewport" content="width=device-width, initial-scale=1">\n'
                   '<meta http-equiv="Content-Security-Policy" content="default-src \'none\'; '
                   'script-src \'unsafe-inline\' \'unsafe-eval\' blob:; worker-src blob:; '

@@ -422,6 +422,26 @@
     setState({theta0_deg: deg >= 360 ? 0 : deg}, false);
   };
   explorer.parseFragment = parseFragment;
+  /** A figure's description for screen readers (``nameFigures``, app/figures/access_js.py):
+   * the state it shows, from the page's own texts (never per animation frame). */
+  function plain(html) {
+    return String(html || "").replace(/<[^>]*>/g, "").replace(/\s+/g, " ").trim();
+  }
+  function springs() {
+    return "k_r = " + KERNEL.formatG(state.k_r, 3) + ", k_θ = " + KERNEL.formatG(state.k_theta, 3) +
+      ", F_N = " + KERNEL.formatG(state.F_N, 3);
+  }
+  window.describeFigure = function (name) {
+    if (!doc) return null;
+    if (/^polar_/.test(name))
+      return "Fixed arrays against θ₀ for " + springs() + ": " + plain(model("polar-status").text);
+    if (name === "regime_map")
+      return plain(model("map-note").text).split(". Click")[0] + ". The current springs, " +
+        springs() + ", are marked.";
+    var headline = plain(model("headline").text);
+    if (!headline) return null;
+    return "One support, " + springs() + ", θ₀ = " + state.theta0_deg + "°: " + headline;
+  };
   window.explorer = explorer;
 
   // The state the file was packed with (the dashboard's download button): used when the

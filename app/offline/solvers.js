@@ -1,6 +1,6 @@
 /* The generic solvers of the arrays, in JavaScript for the offline explorer: ports of
- * model/quadrature.py (adaptive Gauss-Kronrod (7, 15) quadrature of vector integrands)
- * and model/beta.py (the self-consistent load factor beta = L0/<tau_out>(beta): the
+ * model/arrays/quadrature.py (adaptive Gauss-Kronrod (7, 15) quadrature of vector integrands)
+ * and model/arrays/beta.py (the self-consistent load factor beta = L0/<tau_out>(beta): the
  * bracketed Illinois method of ``solve_beta`` and the safeguarded secant method of
  * ``solve_beta_secant``). No physics here: arrays.js applies them to the kernel's contacts.
  *
@@ -147,13 +147,13 @@
   }
 
   // ---------------------------------------------------------------- the load factor beta
-  var BETA_MIN = 1e-3;  // model.beta.BETA_MIN
+  var BETA_MIN = 1e-3;  // model.arrays.beta.BETA_MIN
 
   function clip(b) { return Math.min(1.0, Math.max(BETA_MIN, b)); }
 
   /**
    * solveBetaBracket(meanTau, L0, xtol, maxIter): beta = L0/meanTau(beta) for one problem,
-   * the Illinois method on a bracket in [BETA_MIN, 1] (model.beta.solve_beta, one row).
+   * the Illinois method on a bracket in [BETA_MIN, 1] (model.arrays.beta.solve_beta, one row).
    * Returns {beta, residual, iterations, evaluations, converged, capped, jump, message}.
    */
   function solveBetaBracket(meanTau, L0, xtol, maxIter) {
@@ -193,7 +193,7 @@
 
   /**
    * solveBetaSecant(meanTau, L0, o): beta = L0/meanTau(beta) by a safeguarded secant
-   * method from o.guess with o.slope (model.beta.solve_beta_secant: same steps, same
+   * method from o.guess with o.slope (model.arrays.beta.solve_beta_secant: same steps, same
    * stopping rules; o.xtol, o.maxEvals = 30, o.gtol, o.known = [beta, G]). The returned
    * beta is the last point evaluated. Out of budget, the bracket finishes.
    */

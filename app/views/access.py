@@ -14,7 +14,8 @@ shadow roots (again whenever one of them changes, debounced) and:
 * hides typeset equations' SVG from screen readers: each equation's text is written
   beside it (``EquationsView``), in a visually hidden paragraph;
 * lets the keyboard reach a region that scrolls sideways (a long equation on a phone);
-* names a card's fold button after its title ("Data as a table").
+* names a card's fold button after its title ("Data as a table") and a number field's
+  spin buttons after their field ("increase κ");
 
 ``LiveDescription`` is a polite live region (``role="status"``): a short description of
 what a view's plots show, written by the server from the computed result (never per
@@ -28,8 +29,10 @@ from __future__ import annotations
 import param
 from panel.custom import JSComponent
 
-from ..figures.access_js import HANDLE_NAMES_JS, WATCH_ROOTS_JS
+from ..figures.access_js import HANDLE_NAMES_JS, WATCH_ROOTS_JS, figure_classes
 from .layout import ACCESS_CSS, SR_ONLY_CSS
+
+__all__ = ["PageAccess", "LiveDescription", "figure_classes"]
 
 
 class PageAccess(JSComponent):
@@ -80,8 +83,21 @@ class PageAccess(JSComponent):
       if (label) {
         for (const button of root.querySelectorAll("button")) {
           if (button.getAttribute("aria-label") !== label) button.setAttribute("aria-label", label);
-          if (!button.hasAttribute("aria-pressed"))
-            button.setAttribute("aria-pressed", String(button.classList.contains("bk-active")));
+          // A toggle's pressed state is its active class, also on a button drawn again.
+          const pressed = String(button.classList.contains("bk-active"));
+          if (button.getAttribute("aria-pressed") !== pressed)
+            button.setAttribute("aria-pressed", pressed);
+        }
+      }
+      // A number field's spin buttons: "increase"/"decrease" and the field's title.
+      const spins = root.querySelectorAll("button.bk-spin-btn");
+      if (spins.length) {
+        const title = root.querySelector("label");
+        const what = title ? title.textContent.replace(/\\s+/g, " ").trim() : "";
+        for (const button of spins) {
+          const name = (button.classList.contains("bk-spin-btn-up") ? "increase" : "decrease")
+            + (what ? " " + what : "");
+          if (button.getAttribute("aria-label") !== name) button.setAttribute("aria-label", name);
         }
       }
       // A card's fold button is named by its title, also where the title is clipped.
@@ -108,18 +124,6 @@ class PageAccess(JSComponent):
       model.on("remove", stop);
     }
     """
-
-
-def figure_classes(*figures) -> list[str]:
-    """Mark Bokeh ``figures`` (or layouts) with the class ``figure-<name>`` that a
-    ``LiveDescription``'s ``describes`` names; returns those classes."""
-    classes = []
-    for fig in figures:
-        cls = f"figure-{fig.name}"
-        if cls not in fig.css_classes:
-            fig.css_classes = [*fig.css_classes, cls]
-        classes.append(cls)
-    return classes
 
 
 class LiveDescription(JSComponent):

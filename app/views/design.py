@@ -17,7 +17,6 @@ import time
 import panel as pn
 import param
 
-from model.contact.regimes import EXPLORED_MAP
 from model.runs.shipped_map import load_regime_map
 
 from .. import figures as F
@@ -29,11 +28,15 @@ from ..pinned_state import complete
 from ..results import SessionResults, optimum_family
 from ..state import ExplorerState, distribution_of
 from ..defaults import DESIGN_INPUTS, LAW_INPUTS
+from ..export import sweep_csv
+from .access import LiveDescription, figure_classes
 from .compare_tables import design_compare_markdown, distribution_words
+from .data_table import DataTable
 from .design_law import FrictionLawView
 from .design_readouts import DesignReadouts
 from .design_speeds import FrictionSpeedsView
 from .design_upload import HistogramUpload
+from .design_words import STATUS_WORDS, design_map_description, design_polar_description
 from .layout import INPUT_CSS, PHONE, TOP, WIDE, grid_css, mode_classes, projector_grid
 from .locked import locked as _locked
 from .widgets import caption, look
@@ -80,14 +83,6 @@ FAMILY_LABELS = {"von Mises": "vonmises", "pair ±θ₀": "pair", "fixed θ₀":
 OBJECTIVE_LABELS = {"least F_T,x": "min-FTx", "largest |F_T,y|": "max-FTy"}
 #: What the bound of each objective limits (a force over μ₀F_N).
 BOUND_OF = {"min-FTx": "|F_T,y|", "max-FTy": "F_T,x"}
-_LO, _HI = EXPLORED_MAP
-STATUS_WORDS = {"in_map": "inside the paper's explored map",
-                "outside_map": f"outside the paper's explored map [{_LO:g}, {_HI:g}]² (same "
-                               "model, beyond the paper's figures)",
-                "scaled": "beyond the model range: computed scaled along its speed line",
-                "unusable": "not computable"}
-
-
 def _g(x, digits: int = 3) -> str:
     return "–" if x is None or not math.isfinite(x) else f"{x:.{digits}g}"
 
@@ -192,12 +187,21 @@ class DesignView(pn.viewable.Viewer):
         self.polar_pane = pn.pane.Bokeh(self.polar_figure, margin=0, sizing_mode="stretch_both")
         self._ticker = None
         self._layouts = []  # made by __panel__
+        # The figures in words (once per result) and the curve's numbers as a table.
+        self.map_words, self.polar_words = (
+            LiveDescription(width=0, height=0, margin=0, css_classes=[f"design-{what}-words"],
+                            describes=figure_classes(fig))
+            for what, fig in (("map", self.map_figure), ("polar", self.polar_figure)))
+        self.polar_table = DataTable(lambda: sweep_csv(self.results.design_polar),
+                                     "Fixed arrays of the design's springs against θ₀ "
+                                     "(Fig. 11a)", "design-polar-table")
         for fig in (self.map_figure, self.polar_figure):
             F.style(fig, s.projector)
         self._on_point()
         self._on_polar()
         self._on_array()
         self._on_optimum()
+        self._words()
 
     @property
     def _a(self) -> dict | None:
@@ -280,6 +284,23 @@ class DesignView(pn.viewable.Viewer):
         self.kappa2.disabled = not second or s.dist2_family != "vonmises"
         self.angle2.disabled = not second or s.dist2_family in ("uniform", "histogram")
 
+    # ------------------------------------------------------------------ in words
+    @param.depends("results.design_point", "results.design_array", "results.design_polar",
+                   "results.busy", "state.dist_family", "state.dist_deg", "state.dist_kappa",
+                   "state.dist_psi", "state.mix_weight", "state.dist2_family",
+                   "state.dist2_deg", "state.dist2_kappa", "state.dist_hist", watch=True)
+    def _words(self) -> None:
+        """The map's and the polar diagram's words; the array's friction only once it is
+        the current inputs' (not while a new one is computed)."""
+        r, s = self.results, self.state
+        array = None if "design_array" in r.busy else r.design_array
+        point = None if "design_point" in r.busy else r.design_point
+        self.map_words.text = design_map_description(point, array)
+        polar = None if "design_polar" in r.busy else r.design_polar
+        self.polar_words.text = design_polar_description(polar, s.distribution, s.dist_psi,
+                                                         array)
+        self.polar_table.refresh()
+
     # ------------------------------------------------------------------ readouts
     @param.depends("results.design_array", "results.design_array_A", "state.pinned",
                    watch=True)
@@ -349,7 +370,7 @@ class DesignView(pn.viewable.Viewer):
         grid = pn.GridBox(*self.inputs.values(), ncols=3, margin=(0, 0))
         left = pn.Column(pn.pane.Markdown("**Pillar array** (values with units)",
                                           margin=(0, 5)), grid, self.point_text, self.law,
-                         self.speeds,
+                         self.speeds, self.map_words, self.polar_words,
                          width=315,
                          css_classes=["design-inputs"])
         projector = self.state.projector
@@ -359,7 +380,8 @@ class DesignView(pn.viewable.Viewer):
                               (self.family2, self.angle2, self.kappa2, self.mix))]
         right = pn.Column(
             *fields, self.upload,
-            self.table, self.compare, pn.Row(self.objective, self.bound, margin=0),
+            self.table, self.polar_table, self.compare,
+            pn.Row(self.objective, self.bound, margin=0),
             pn.Row(self.optimise_button, self.cancel_button, margin=0),
             self.optimum_text, width=345, css_classes=["design-side"])
         figures = pn.Column(self.map_pane, self.polar_pane, margin=0,

@@ -25,7 +25,9 @@ from ..results import SessionResults
 from ..state import ExplorerState
 from ..upload import upload_text
 from ..defaults import DEFAULTS, DESIGN_INPUTS, LAW_INPUTS
+from .access import LiveDescription, figure_classes
 from .design_upload import plain
+from .design_words import law_description
 from .layout import INPUT_CSS
 from .locked import locked
 from .widgets import caption
@@ -57,9 +59,11 @@ def read_upload(data: bytes, filename: str = "", reader=curve_from_text,
     return curve
 
 
-def curve_input(css_class: str, what: str = "") -> pn.widgets.FileInput:
-    """A file input for a friction curve (``FORMAT``), ``what`` naming whose."""
-    return pn.widgets.FileInput(accept=".csv,.txt,text/csv,text/plain", width=300,
+def curve_input(css_class: str, title: str, what: str = "") -> pn.widgets.FileInput:
+    """A file input for a friction curve (``FORMAT``) with its visible ``title`` (its name
+    for a screen reader too), ``what`` naming whose."""
+    return pn.widgets.FileInput(**caption(title), accept=".csv,.txt,text/csv,text/plain",
+                                width=300,
                                 margin=(2, 5), css_classes=[css_class], stylesheets=[INPUT_CSS],
                                 description=f"{what}{FORMAT}; at most {MAX_POINTS} points")
 
@@ -116,13 +120,15 @@ class FrictionLawView(pn.viewable.Viewer):
         self.inputs = {name: pn.widgets.TextInput.from_param(
             s.param[name], **caption(DESIGN_INPUTS[name][2]), width=145, margin=(0, 3),
             css_classes=[f"ctl-{name}"], stylesheets=[INPUT_CSS]) for name in LAW_INPUTS}
-        self.file = curve_input("design-friction-file")
+        self.file = curve_input("design-friction-file", "Measured friction curve (CSV)")
         self.note = pn.pane.Markdown("", width=300, margin=(0, 5),
                                      styles={"font-size": "0.85em"},
                                      css_classes=["design-friction"])
         self.figure = law_figure()
         self._sources = F.sources(self.figure)
         self.pane = pn.pane.Bokeh(self.figure, margin=0)
+        self.words = LiveDescription(width=0, height=0, margin=0, css_classes=["design-law-words"],
+                                     describes=figure_classes(self.figure))
         self._problem = ""
         self.file.param.watch(self._on_file, "value")
         F.style(self.figure, s.projector)
@@ -162,7 +168,9 @@ class FrictionLawView(pn.viewable.Viewer):
         if problem:
             lines.append(problem)
         self.note.object = "  \n".join(lines)
-        data, speeds, mus = law_data(law, fit, s.friction_curve if fit is not None else None, V0)
+        curve = s.friction_curve if fit is not None else None
+        data, speeds, mus = law_data(law, fit, curve, V0)
+        self.words.text = law_description(law, fit, curve, V0, problem)
 
         def draw():
             F.update(self._sources, data)
@@ -178,4 +186,4 @@ class FrictionLawView(pn.viewable.Viewer):
                                           margin=(4, 5, 0, 5)),
                          pn.GridBox(*self.inputs.values(), ncols=2, margin=0), self.file,
                          self.note,
-                         self.pane, margin=0, css_classes=["design-law"])
+                         self.pane, self.words, margin=0, css_classes=["design-law"])

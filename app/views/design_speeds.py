@@ -24,7 +24,9 @@ from ..results import SessionResults
 from ..speed_results import speed_words
 from ..state import ExplorerState
 from .design_law import FORMAT, curve_input, take_upload
+from .access import LiveDescription, figure_classes
 from .design_upload import plain
+from .design_words import speeds_description
 from .layout import INPUT_CSS
 from .locked import locked
 from .widgets import caption, look
@@ -77,12 +79,17 @@ class FrictionSpeedsView(pn.viewable.Viewer):
         self.note = pn.pane.Markdown("", width=300, margin=(0, 5),
                                      styles={"font-size": "0.85em"},
                                      css_classes=["design-speeds"])
-        self.file = curve_input("design-structured-file", "the structured sample: ")
+        self.file = curve_input("design-structured-file",
+                                "Structured sample's measured curve (CSV)",
+                                "the structured sample: ")
         self.compare = pn.pane.Markdown("", width=300, margin=(0, 5),
                                         styles={"font-size": "0.85em"},
                                         css_classes=["design-speeds-compare"])
         self.figure, self.difference = speeds_figure(), difference_figure()
         self._sources = {**F.sources(self.figure), **F.sources(self.difference)}
+        self.words = LiveDescription(width=0, height=0, margin=0,
+                                     css_classes=["design-speeds-words"],
+                                     describes=figure_classes(self.figure, self.difference))
         self._problem = ""
         self.file.param.watch(self._on_file, "value")
         for fig in (self.figure, self.difference):
@@ -127,6 +134,7 @@ class FrictionSpeedsView(pn.viewable.Viewer):
         law = r.speed_law if points else _law_or_none(s)
         data, xr, yr = speeds_data(points, law, measured)
         diff, dr = difference_data(c)
+        self.words.text = speeds_description(points, law, measured, c, r.speed_running)
 
         def draw():
             F.update(self._sources, {**data, **diff})
@@ -149,7 +157,7 @@ class FrictionSpeedsView(pn.viewable.Viewer):
             pn.Row(self.range, self.n, margin=0),
             pn.Row(self.predict, self.cancel, self.progress, margin=0), self.note,
             pn.pane.Bokeh(self.figure, margin=0), self.file, self.compare,
-            pn.pane.Bokeh(self.difference, margin=0), margin=0, css_classes=["design-speeds-box"])
+            pn.pane.Bokeh(self.difference, margin=0), self.words, margin=0, css_classes=["design-speeds-box"])
 
 
 def _law_or_none(state):

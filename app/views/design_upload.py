@@ -17,6 +17,7 @@ import param
 from ..histogram import MAX_UPLOAD_BYTES, describe, link_note, read_upload
 from ..state import ExplorerState
 from .layout import INPUT_CSS
+from .widgets import caption
 
 #: Markdown and HTML characters, escaped where a file's name or content is echoed.
 _MARKUP = re.compile(r"([\\`*_{}\[\]()#!|<>&~])")
@@ -35,7 +36,8 @@ class HistogramUpload(pn.viewable.Viewer):
 
     def __init__(self, **params):
         super().__init__(**params)
-        self.file = pn.widgets.FileInput(accept=".csv,.txt,text/csv,text/plain", width=300,
+        self.file = pn.widgets.FileInput(**caption("Orientation histogram (CSV)"),
+                                         accept=".csv,.txt,text/csv,text/plain", width=300,
                                          margin=(2, 5), css_classes=["design-histogram-file"],
                                          stylesheets=[INPUT_CSS],
                                          description=f"{FORMAT}; at most "

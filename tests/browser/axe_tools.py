@@ -1,4 +1,5 @@
-"""axe-core (the npm package) in a page: WCAG 2.1 A/AA rules, run on the whole document.
+"""axe-core (the npm package) in a page: WCAG 2.1 A/AA rules, run on the whole document;
+and what a screen reader is given: Chromium's accessibility tree (``ax_tree``).
 
 axe-core is installed next to the repository, never committed:
 ``npm install --prefix .browser-tools axe-core@4`` (``.ci/run`` does it). ``AXE_JS`` is
@@ -61,3 +62,27 @@ def describe(found: list[dict]) -> str:
     """Violations as text, one rule a line with a few of its elements."""
     return "\n".join(f"{v['id']} ({len(v['nodes'])} elements, {v['impact']}): {v['help']}; "
                      f"e.g. {v['nodes'][:3]} {v['summary'][:1]}" for v in found)
+
+
+def ax_tree(page) -> list[dict]:
+    """The page's accessibility tree: the nodes a screen reader is given (not ignored),
+    as {role, name, description}."""
+    cdp = page.context.new_cdp_session(page)
+    try:
+        cdp.send("Accessibility.enable")
+        nodes = cdp.send("Accessibility.getFullAXTree")["nodes"]
+    finally:
+        cdp.detach()
+    out = []
+    for node in nodes:
+        if node.get("ignored"):
+            continue
+        value = lambda key: str((node.get(key) or {}).get("value") or "").strip()  # noqa: E731
+        out.append({"role": value("role"), "name": value("name"),
+                    "description": value("description")})
+    return out
+
+
+def ax_figures(page) -> dict:
+    """The figures a screen reader is given: {name: description}."""
+    return {n["name"]: n["description"] for n in ax_tree(page) if n["role"] == "figure"}

@@ -9,33 +9,12 @@ import re
 import pytest
 
 from . import page_tools as pt
+from .axe_tools import ax_figures as _figures
+from .axe_tools import ax_tree as _tree
 
 pytestmark = [pytest.mark.browser, pytest.mark.timeout(600)]
 
 BUTTONS = {"button", "toggleButton", "ToggleButton", "PopUpButton", "tab"}
-
-
-def _tree(page) -> list[dict]:
-    """The page's accessibility tree: the nodes a screen reader is given (not ignored),
-    as {role, name, description}."""
-    cdp = page.context.new_cdp_session(page)
-    try:
-        cdp.send("Accessibility.enable")
-        nodes = cdp.send("Accessibility.getFullAXTree")["nodes"]
-    finally:
-        cdp.detach()
-    out = []
-    for node in nodes:
-        if node.get("ignored"):
-            continue
-        value = lambda key: str((node.get(key) or {}).get("value") or "").strip()  # noqa: E731
-        out.append({"role": value("role"), "name": value("name"),
-                    "description": value("description")})
-    return out
-
-
-def _figures(page) -> dict:
-    return {n["name"]: n["description"] for n in _tree(page) if n["role"] == "figure"}
 
 
 def _check_names(nodes: list[dict], where: str) -> None:
@@ -73,4 +52,44 @@ def test_every_slider_button_and_plot_has_a_name_and_the_plots_words_follow_the_
                                       if figure in n), timeout_s=180,
                     what=lambda: f"the {title} tab's figure and its words: {_figures(page)}")
         _check_names(_tree(page), title)
+    assert page_log.errors == [], page_log.errors
+
+
+#: The Design tab's figures (their titles) and what their words must hold.
+DESIGN_FIGURES = {"The design on Fig. 5a": "star at k̃_r", "Fig. 11a": "Polar diagram",
+                  "Friction law": "At the design's V₀", "Friction against sliding speed":
+                  "Dashed: the flat material's μ(V₀)"}
+
+
+def _design(page) -> dict:
+    """The Design tab's figures: {title prefix: description} of those on show."""
+    figures = _figures(page)
+    return {key: words for key in DESIGN_FIGURES for name, words in figures.items()
+            if name.startswith(key)}
+
+
+def _design_said(page, *needles) -> bool:
+    said = _design(page)
+    return (set(said) == set(DESIGN_FIGURES)
+            and all(DESIGN_FIGURES[k] in w for k, w in said.items())
+            and all(any(n in w for w in said.values()) for n in needles))
+
+
+def test_the_design_tabs_figures_are_named_and_described_by_the_designs_result(
+        page, page_log, app_url):
+    pt.wait_for_app(page, f"{app_url}?tab=design")
+    pt.wait_for(page, lambda: _design_said(page, "V₀ = 1 m/s", "stiff regime",
+                                           "Its friction F_T,x/(μ₀F_N)"), timeout_s=180,
+                what=lambda: f"the Design tab's figures and their words: {_figures(page)}")
+    _check_names(_tree(page), "Design")
+    before = _design(page)
+
+    box = page.locator(".ctl-design_V0 input").first
+    box.fill("300 m/s")
+    box.press("Enter")
+    pt.wait_for(page, lambda: _design_said(page, "at V₀ = 300 m/s", "soft regime"),
+                timeout_s=180, what=lambda: f"the words to follow V₀: {_design(page)}")
+    after = _design(page)
+    for key in ("The design on Fig. 5a", "Friction law"):
+        assert after[key] != before[key], (key, after[key])
     assert page_log.errors == [], page_log.errors

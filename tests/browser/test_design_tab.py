@@ -33,7 +33,7 @@ def _wait_point(page, predicate, timeout_ms=60_000):
 
 def test_the_design_tab_marks_its_point_on_the_map(page, page_log, app_url):
     pt.wait_for_app(page, f"{app_url}?tab=design")
-    pt.wait_for_plot(page, "regime_map")
+    pt.wait_for_plot(page, "design_map")
     # The default pillars (LDPE, the notes' example) at the default speed of 1 m/s.
     expected = PillarDesign.example(V0="1 m/s").dimensionless()
     point = _wait_point(page, lambda d: True)
@@ -43,7 +43,7 @@ def test_the_design_tab_marks_its_point_on_the_map(page, page_log, app_url):
     assert len(line["k_r"]) > 10  # the speed line through it
     # Outside the paper's map: the log axes widen to show it.
     x_end = page.evaluate("""() => [...Bokeh.documents[0].all_models].find(
-        (m) => m.name === "regime_map" && "x_range" in m).x_range.end""")
+        (m) => m.name === "design_map" && "x_range" in m).x_range.end""")
     assert x_end > expected["k_r"]
     shown = page.locator(".design-point p").filter(has_text="outside the paper's explored map")
     shown.first.wait_for(timeout=30_000)

@@ -54,11 +54,11 @@ def test_every_tab_fits_a_phone(browser, app_url, tab):
 def test_the_design_figures_cover_no_input_on_a_phone(browser, app_url):
     context, page = _phone(browser, f"{app_url}?tab=design")
     try:
-        pt.wait_for_plot(page, "regime_map")
+        pt.wait_for_plot(page, "design_map")
         boxes = page.evaluate("""() => {
           const out = {};
           for (const m of Bokeh.documents[0].all_models) {
-            if (m.name !== "regime_map" || !("x_range" in m)) continue;
+            if (m.name !== "design_map" || !("x_range" in m)) continue;
             const v = Bokeh.index.find_one(m);
             if (!v || v.el.getBoundingClientRect().width === 0) continue;
             const r = v.el.getBoundingClientRect();

@@ -24,7 +24,7 @@ SCREENS = {"1280x720": {"width": 1280, "height": 720},
 TABS = {"support": ("One support", "scene"), "array": ("Array", "array_top"),
         "polar": ("Orientation (polar)", "polar_FTx"), "map": ("Regime map", "regime_map"),
         "load": ("Load", "load"), "equations": ("Equations", None),
-        "design": ("Design", "regime_map")}
+        "design": ("Design", "design_map")}
 PROJECTOR_MIN_PX = MIN_TEXT_PX * PROJECTOR_SCALE
 
 # The visible figures: page box, frame (drawn plot area, in the figure's canvas), and the

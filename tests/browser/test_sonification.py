@@ -116,3 +116,38 @@ def test_sound_is_off_until_asked_then_follows_the_frames_and_stops(page, page_l
     assert toggle.get_attribute("aria-pressed") == "false"
     pt.click_button(page, "Pause")
     assert not page_log.errors, page_log.dump()
+
+
+def _set_active(page, on: bool) -> None:
+    """Switch the sound as the page itself does (its model's property, not a click)."""
+    page.evaluate("""(on) => { [...Bokeh.documents[0].all_models].find(
+        (m) => m.name === "support_player_sound").active = on; }""", on)
+
+
+def test_the_toggle_says_whether_the_sound_is_on_however_it_changed(page, page_log, app_url):
+    page.add_init_script(_COUNT_CONTEXTS)
+    pt.wait_for_app(page, f"{app_url}?regime=soft")
+    toggle = page.get_by_role("button", name=SOUND_NAME)
+    pt.wait_for(page, lambda: toggle.count() == 1, what=f"a button named {SOUND_NAME!r}")
+    pressed = lambda: toggle.get_attribute("aria-pressed")  # noqa: E731
+
+    _set_active(page, True)  # switched on by the page, the focus elsewhere
+    pt.wait_for(page, lambda: pressed() == "true", what=lambda: f"aria-pressed: {pressed()}")
+    pt.open_tab(page, "^Array")  # another tab and back: the button still says it
+    page.wait_for_timeout(500)
+    pt.open_tab(page, "^One support")
+    pt.wait_for(page, lambda: toggle.is_visible(), what="the toggle shown again")
+    assert pressed() == "true"
+
+    page.locator("body").click(position={"x": 5, "y": 5})  # the focus off the toggle
+    _set_active(page, False)  # the page turns the sound off itself
+    pt.wait_for(page, lambda: pressed() == "false", what=lambda: f"aria-pressed: {pressed()}")
+    pt.wait_for(page, lambda: _contexts(page) in ([], ["closed"]),
+                what=lambda: f"no audio once off: {_contexts(page)}")
+
+    toggle.focus()
+    page.keyboard.press("Space")  # and the keyboard
+    pt.wait_for(page, lambda: pressed() == "true", what=lambda: f"aria-pressed: {pressed()}")
+    page.keyboard.press("Space")
+    pt.wait_for(page, lambda: pressed() == "false", what=lambda: f"aria-pressed: {pressed()}")
+    assert not page_log.errors, page_log.dump()
