@@ -15,7 +15,7 @@ The touches, and what each buys:
    on the base class so Bokeh's and Panel's handlers get it too: no other site may frame
    the dashboard, browsers take each file as the type the server declares. There it also
    drops a ``bokeh-session-id`` Bokeh would read as empty (Bokeh answers 500,
-   ``docs/upstream/empty_session_id.py``).
+   ``docs/upstream/empty_session_id.py``) or cannot decode (Tornado answers 400).
 2. **The busy page before any session** (``answer_busy_before_building``): a client whose
    unopened pages fill its place in the page gate (``app.pages``) gets ``BUSY_HTML``
    (~1 ms) instead of a Bokeh session and a Panel page (~25 ms of the event loop each), so
@@ -103,23 +103,27 @@ def add_security_headers() -> None:
         default(self)
         for name, value in SECURITY_HEADERS.items():
             self.set_header(name, value)
-        drop_empty_session_id(getattr(self, "request", None))
+        drop_unreadable_session_id(getattr(self, "request", None))
 
     set_default_headers._security_headers = True
     RequestHandler.set_default_headers = set_default_headers
 
 
-def drop_empty_session_id(request) -> None:
-    """Without a ``bokeh-session-id`` Bokeh reads as empty (control characters made
-    spaces, then stripped: ``?bokeh-session-id=%00`` is empty too), the page gets a new
-    session, as for any address without one."""
+def drop_unreadable_session_id(request) -> None:
+    """Without a ``bokeh-session-id`` Bokeh cannot read -- empty (control characters made
+    spaces, then stripped: ``?bokeh-session-id=%00`` is empty too; Bokeh answers 500) or
+    not UTF-8 (``%ED%A0%80``; Tornado answers 400) -- the page gets a new session, as for
+    any address without one."""
     for args in (getattr(request, "query_arguments", None), getattr(request, "arguments", None)):
         values = args.get("bokeh-session-id") if args is not None else None
         if not values:
             continue
         last = values[-1]
         if isinstance(last, bytes):
-            last = last.decode("utf-8", errors="replace")
+            try:
+                last = last.decode("utf-8")
+            except UnicodeDecodeError:
+                last = ""
         if not CONTROL_CHARS.sub(" ", last).strip():
             del args["bokeh-session-id"]
 

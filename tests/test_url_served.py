@@ -90,9 +90,12 @@ def test_served_app_survives_fuzzed_queries(served, pairs, raw):
 @pytest.mark.parametrize("query", ["bokeh-session-id=", "bokeh-session-id=%20&k_r=0.5",
                                    "bokeh-session-id=&bokeh-session-id=",
                                    "bokeh-session-id=%00", "bokeh-session-id=x&bokeh-session-id=",
-                                   "bokeh-session-id=%01%1f%20"])
-def test_an_empty_session_id_gets_a_new_session(served, query):
-    """Found by the fuzzing above: Bokeh answered 500 ("Session ID must not be empty")."""
+                                   "bokeh-session-id=%01%1f%20",
+                                   "bokeh-session-id=x&bokeh-session-id=%ED%A0%80",
+                                   "bokeh-session-id=%FF%FE"])
+def test_an_unreadable_session_id_gets_a_new_session(served, query):
+    """Found by the fuzzing above: Bokeh answered 500 ("Session ID must not be empty"), and
+    Tornado 400 to a session id that is not UTF-8."""
     base, log = served
     status, body = _get(f"{base}/app?{query}")
     assert status == 200 and "bokeh" in body.lower(), body[-2000:]

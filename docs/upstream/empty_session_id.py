@@ -8,7 +8,7 @@ into spaces and strips -- raises "Session ID must not be empty" and answers
 (a new session, as for an address without one) or a 400.
 
 Run: ``python docs/upstream/empty_session_id.py`` (prints the status of each address).
-Workaround in this project: ``app/edge.py`` (``drop_empty_session_id``).
+Workaround in this project: ``app/edge.py`` (``drop_unreadable_session_id``).
 """
 import panel as pn
 
