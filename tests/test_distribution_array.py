@@ -74,8 +74,14 @@ def test_when_every_member_is_cut_the_result_says_so_without_warnings():
     assert not a.success and a.outcome == "contacts_cut"
     assert a.n_failed == a.n_members == 1
     assert "none of the 1 members finished its contact" in a.message
-    # No member, no value: NaN with the reason, never a made-up number such as 0.
+    # No member, no value: NaN with the reason, never a made-up number such as 0 -- nor
+    # the self-consistent beta's starting guess (1), which nothing was solved on.
     assert math.isnan(a.FTx_over_mu0FN) and math.isnan(a.Nc_over_Nc0)
+    assert math.isnan(a.beta) and math.isnan(a.to_dict()["beta"])
+    # A fixed beta is the caller's input: reported as given.
+    with np.errstate(all="raise"):
+        fixed = distribution_array(p, Pair(0.02), budget=1e-6, beta=0.5)
+    assert fixed.n_failed == fixed.n_members and fixed.beta == 0.5
 
 
 @pytest.mark.parametrize("kwargs, outcome", [

@@ -229,7 +229,7 @@ def _array(params, distribution, psi, self_consistent, tol, options, max_interva
     return assemble(params.replace(beta=state["beta"]), distribution, psi, atom_sum, atom_diag,
                     atoms, quad, m0, counter, beta_iter, beta_res, options,
                     time.perf_counter() - start, budget if (out_of_time or beta_cut) else None,
-                    beta_cut, atom_filled)
+                    beta_cut, atom_filled, self_consistent)
 
 
 #: Arrays without a time budget, by their arguments (the cache the dashboard's sessions

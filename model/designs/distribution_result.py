@@ -176,7 +176,7 @@ def _bounds(mean, e, filled, mu_max, m0) -> tuple[dict, dict]:
 
 def _assemble(params, distribution, psi, atom_sum, atom_diag, atoms, quad, m0, counter,
               beta_iter, beta_res, options, seconds, budget=None, beta_cut=False,
-              atom_filled=None):
+              atom_filled=None, self_consistent=False):
     n_q = len(QUANTITIES)
     total = atom_sum.copy()
     err = np.zeros(n_q)
@@ -253,7 +253,10 @@ def _assemble(params, distribution, psi, atom_sum, atom_diag, atoms, quad, m0, c
         params=params, distribution=distribution, psi=psi,
         FTx_over_mu0FN=mean["F_x"] / m0, FTx_over_mu0FN_duration=duration,
         FTy_over_mu0FN=mean["F_y"] / m0, Dy_over_Dx=Dy_Dx,
-        Nc_over_Nc0=mean["t_out"] / params.L0, beta=params.beta,
+        Nc_over_Nc0=mean["t_out"] / params.L0,
+        # A self-consistent beta solved on no finished member is no value either (a given
+        # beta is the caller's input, reported as given).
+        beta=math.nan if nothing and self_consistent else params.beta,
         work_split={k: v for k, (v, _) in split.items()},
         dtheta_rms=mean["dtheta_rms"], dr_rms=mean["dr_rms"],
         quadrature_error=_error_bars(errors, values, bounds, n_failed, beta_cut),
