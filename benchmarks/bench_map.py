@@ -1,6 +1,6 @@
 """Speed of the regime map (Fig. 5) on 2 processes from empty caches, with its error.
 
-    flock /work/cpu.lock python benchmarks/bench_map.py [--quick] [--runs N] [--out DIR]
+    python benchmarks/bench_map.py [--quick] [--runs N] [--out DIR]
 
 Times the 24 x 24 map (tol 1e-3, self-consistent beta) at F_N = 0.1, 1, 3 and 10, ``--runs``
 times at F_N = 3 (median [min–max]) and once at the other loads; each run gets an empty
