@@ -48,7 +48,7 @@ def test_known_methods(method):
 
 
 def test_method_names():
-    assert METHODS == ("auto", "explicit", "implicit", "reference")
+    assert METHODS == ("auto", "explicit", "implicit", "reference", "reference-radau")
 
 
 @pytest.mark.parametrize("method", ["rk45", "AUTO", "", None, "dop853"])

@@ -5,11 +5,15 @@ from dataclasses import dataclass
 
 from ..validation import Interval, choice, number, whole
 
-__all__ = ["SolverOptions", "METHODS", "ARRAY_METHODS", "array_method", "RTOL", "ATOL", "MAX_STEPS", "TAU_MAX", "RTOL_CHOICES"]
+__all__ = ["SolverOptions", "METHODS", "REFERENCE_METHODS", "ARRAY_METHODS", "array_method", "RTOL", "ATOL", "MAX_STEPS", "TAU_MAX", "RTOL_CHOICES"]
 
-#: ``auto`` switches between the explicit and implicit pair by stiffness detection;
-#: ``reference`` is scipy's DOP853 (slow, independent, for tests and benchmarks).
-METHODS = ("auto", "explicit", "implicit", "reference")
+#: The scipy references (slow, independent of the kernel, for tests and benchmarks), each
+#: with the ``solve_ivp`` method it runs: DOP853 (explicit, 8th order), and Radau
+#: (implicit, 5th order) for the stiff contacts of large loads, where the explicit pair's
+#: steps are bound by stability (k_r = k_theta = 0.01, F_N = 30: ~10x cheaper at 1e-12).
+REFERENCE_METHODS = {"reference": "DOP853", "reference-radau": "Radau"}
+#: ``auto`` switches between the explicit and implicit pair by stiffness detection.
+METHODS = ("auto", "explicit", "implicit", *REFERENCE_METHODS)
 #: Arrays integrate many contacts in one compiled batch; the scipy reference does one at a time.
 ARRAY_METHODS = ("auto", "explicit", "implicit")
 #: Accepted ranges: below rtol 1e-14 the steps drown in rounding, above 1e-2 the
@@ -63,7 +67,7 @@ class SolverOptions:
 
 def array_method(method: str) -> str:
     """``method`` if arrays can use it, else a ValueError naming it and the choices."""
-    if method == "reference":
-        raise ValueError("method='reference' is for single contacts (simulate_support); "
+    if method in REFERENCE_METHODS:
+        raise ValueError(f"method={method!r} is for single contacts (simulate_support); "
                          f"arrays take {', '.join(ARRAY_METHODS)}")
     return choice("method", method, ARRAY_METHODS)

@@ -1,4 +1,4 @@
-"""Reference solution with scipy's ``solve_ivp`` (DOP853), independent of the kernel.
+"""Reference solution with scipy's ``solve_ivp`` (DOP853 or Radau), independent of the kernel.
 
 Written directly from Eqs. (3)-(6) with numpy so that it shares no code with the
 compiled kernel beyond the friction law of ``model.contact.friction``. Slow (~10 us of
@@ -13,7 +13,7 @@ from scipy.integrate import solve_ivp
 
 from .._kernel import slots
 from .friction import mu_over_s
-from .options import SolverOptions
+from .options import REFERENCE_METHODS, SolverOptions
 from .params import Params
 
 __all__ = ["reference_rhs", "integrate_reference"]
@@ -44,13 +44,14 @@ class _Budget(Exception):
 
 
 def integrate_reference(params: Params, options: SolverOptions, dense: bool = False):
-    """Integrate one contact with DOP853 until s(tau) = L0 (Eq. 9).
+    """Integrate one contact with scipy until s(tau) = L0 (Eq. 9): DOP853, or Radau for
+    ``options.method == "reference-radau"`` (``REFERENCE_METHODS``).
 
     Returns (status, t_out, y_out, stats, r_min, r_max, sol) with the status codes of
     ``model.contact.results.Status``; ``sol`` is scipy's dense output (or None).
     """
     fun = reference_rhs(params)
-    budget = 13 * options.max_steps  # DOP853 uses ~12 evaluations per step
+    budget = 13 * options.max_steps  # DOP853 uses ~12 evaluations per step, Radau fewer
     calls = [0]
 
     def counted(t, u):
@@ -69,7 +70,8 @@ def integrate_reference(params: Params, options: SolverOptions, dense: bool = Fa
     u0 = np.zeros(11)
     u0[:5] = [x0, y0, 0.0, 0.0, params.theta0]
     try:
-        sol = solve_ivp(counted, (0.0, options.tau_max), u0, method="DOP853", rtol=options.rtol,
+        sol = solve_ivp(counted, (0.0, options.tau_max), u0,
+                        method=REFERENCE_METHODS[options.method], rtol=options.rtol,
                         atol=options.atol, events=exit_event, dense_output=dense)
     except _Budget:
         return (slots.STEP_BUDGET, math.nan, np.full(11, np.nan), {"n_rhs": calls[0]}, math.nan,

@@ -13,7 +13,7 @@ from ..arrays.contacts import PIVOT_RADIUS_OVER_LAMBDA, STAT_NAMES, exit_quantit
 from ..validation import instance, whole
 from .energy import elastic_energy, kinetic_energy
 from .friction import mu_over_s
-from .options import SolverOptions
+from .options import REFERENCE_METHODS, SolverOptions
 from .params import Params
 from .reference import integrate_reference
 from .results import ACCURACY_FACTOR, Status, SupportResult, TimeSeries
@@ -38,11 +38,12 @@ def simulate_support(params: Params, rtol: float = 1e-6, atol: float | None = No
         Local relative error tolerance.
     atol : float, optional
         Local absolute error tolerance; ``None`` means ``rtol / 100``.
-    method : {"auto", "explicit", "implicit", "reference"}, default "auto"
+    method : {"auto", "explicit", "implicit", "reference", "reference-radau"}, default "auto"
         ``"auto"``: the explicit Dormand-Prince pair chosen by rtol (DOP853 at
         rtol <= 1e-6, 5(4) above), switching to the L-stable Rosenbrock Rodas4 where
-        stiffness is detected; ``"explicit"``, ``"implicit"`` (Rodas4) or ``"reference"``
-        (scipy's DOP853, slow). See the Solvers page of the documentation.
+        stiffness is detected; ``"explicit"``, ``"implicit"`` (Rodas4), ``"reference"``
+        (scipy's DOP853, slow) or ``"reference-radau"`` (scipy's Radau, for stiff contacts).
+        See the Solvers page of the documentation.
     samples : int, default 0
         Number of uniformly spaced points of the time histories to return in
         ``result.series`` (0: none, the fastest).
@@ -93,10 +94,10 @@ def simulate_support(params: Params, rtol: float = 1e-6, atol: float | None = No
 
 def _integrate(params: Params, options: SolverOptions, samples: int) -> SupportResult:
     """The contact's result, computed (``_simulate``: the same, cached)."""
-    if options.method == "reference":
+    if options.method in REFERENCE_METHODS:
         status, t, y, stats, r_min, r_max, sol = integrate_reference(params, options,
                                                                      dense=samples > 0)
-        stats["method"] = "reference (scipy DOP853)"
+        stats["method"] = f"reference (scipy {REFERENCE_METHODS[options.method]})"
         c = exit_quantities(params, options, np.array([params.theta0]), [status], [t], [y],
                             np.zeros((1, len(STAT_NAMES)), np.int64), [r_min], r_max=[r_max])
         series = _series_from_dense(params, sol, t, samples) if samples and status == 0 else None
