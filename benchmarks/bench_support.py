@@ -3,7 +3,7 @@
     python benchmarks/bench_support.py [--quick] [--out DIR]
 
 For each case the exit state (x, y, v_x, v_y, theta at tau_out) is compared with a
-tight scipy DOP853 reference (cached in DIR/reference_cache.json). Every method runs
+tight scipy reference (DOP853; Radau for the stiff case; cached in DIR/reference_cache.json). Every method runs
 over a sweep of rtol (atol = rtol/100); each time is the median over repeated runs,
 reported with its min and max, and the time needed for a target error is found by
 log-log interpolation along the sweep. A scipy run is aborted past ABORT seconds, and
@@ -31,6 +31,7 @@ import numpy as np
 
 
 from model import REGIMES, Params, SolverOptions, simulate_support
+from model.contact.options import REFERENCE_METHODS
 from model import _kernel
 
 from machine import machine
@@ -64,8 +65,14 @@ def cases(mode: str) -> dict:
     return out
 
 
+#: The cases whose contacts are stiff (large load): their reference is scipy's Radau, as
+#: DOP853's steps are bound by stability there.
+STIFF = ("hard F_N=10",)
+
+
 def reference(name: str, params: Params, rtol: float, cache_file: Path) -> dict:
-    """Exit time and state of a tight DOP853 run, cached by case and parameters.
+    """Exit time and state of a tight scipy run (DOP853; Radau for the stiff cases,
+    ``STIFF``), cached by case and parameters.
 
     A cached entry at rtol or tighter is reused; otherwise the run is made and stored.
     """
@@ -74,10 +81,12 @@ def reference(name: str, params: Params, rtol: float, cache_file: Path) -> dict:
     if key in cache and cache[key]["rtol"] <= rtol:
         return cache[key]
     start = time.perf_counter()
-    res = simulate_support(params, rtol=rtol, atol=1e-15, method="reference", max_steps=2_000_000)
+    method = "reference-radau" if name in STIFF else "reference"
+    res = simulate_support(params, rtol=rtol, atol=1e-15, method=method, max_steps=2_000_000)
     if not res.success:
         raise RuntimeError(f"reference for {name} failed: {res.message}")
-    cache[key] = {"rtol": rtol, "t_out": res.t_out, "state_out": [float(v) for v in res.state_out],
+    cache[key] = {"rtol": rtol, "method": REFERENCE_METHODS[method], "t_out": res.t_out,
+                  "state_out": [float(v) for v in res.state_out],
                   "seconds": time.perf_counter() - start, "n_rhs": res.stats["n_rhs"]}
     cache_file.write_text(json.dumps(cache, indent=1))
     return cache[key]
@@ -239,8 +248,10 @@ def cuts(case: str, rows: dict) -> list:
     return out
 
 
-def startup(repeats: int) -> dict:
-    """Seconds from process start to the first trajectory: warm cache, and cold compile.
+def startup(repeats: int, cold: bool = True) -> dict:
+    """Seconds from process start to the first trajectory: warm cache, and cold compile
+    (``cold=False``: not measured, as in ``--quick``; it compiles every kernel anew, a
+    minute on two cores).
 
     An untimed first run brings the compile cache up to date with the sources.
     """
@@ -249,11 +260,13 @@ def startup(repeats: int) -> dict:
         subprocess.run([sys.executable, "-c", STARTUP], env=env, check=True)
         return time.perf_counter() - start
     warm = [run(os.environ.copy()) for _ in range(repeats + 1)][1:]
-    with tempfile.TemporaryDirectory() as empty:
-        cold = run({**os.environ, "NUMBA_CACHE_DIR": empty})
+    compile_s = None
+    if cold:
+        with tempfile.TemporaryDirectory() as empty:
+            compile_s = run({**os.environ, "NUMBA_CACHE_DIR": empty})
     w = spread(warm)
     return {"warm_median_s": w["median"], "warm_min_s": w["min"], "warm_max_s": w["max"],
-            "warm_s": warm, "cold_compile_s": cold}
+            "warm_s": warm, "cold_compile_s": compile_s}
 
 
 def fmt(v, digits=3) -> str:
@@ -305,7 +318,7 @@ def report(info, results, methods, start, notes, cut_notes, cost, cap, abort) ->
     """(headline printed to stdout, full markdown report)."""
     head = summary(results, methods, start, notes, cut_notes, cost, cap, abort)
     machine_lines = [f"- {k}: {v}" for k, v in info.items()]
-    body = [f"## {case}\n\nReference: DOP853 rtol={r['reference']['rtol']:g}, atol=1e-15, "
+    body = [f"## {case}\n\nReference: {r['reference'].get('method', 'DOP853')} rtol={r['reference']['rtol']:g}, atol=1e-15, "
             f"tau_out={r['reference']['t_out']:.12g}.\n\n{sweep_table(r['rows'])}"
             for case, r in results.items()]
     return head, "\n\n".join(["# One support: speed against error", "\n".join(machine_lines), head,
@@ -325,7 +338,8 @@ def summary(results, methods, start, notes, cut_notes, cost, cap, abort) -> str:
         f"[min–max] of {cost['n']} loops); RHS bound = median cost x auto's n_rhs at target.",
         f"Process start to first trajectory: {start['warm_median_s']:.2f} s [{start['warm_min_s']:.2f}–"
         f"{start['warm_max_s']:.2f}] with the compile cache (median [min–max] of {len(start['warm_s'])}), "
-        f"{start['cold_compile_s']:.2f} s cold (one run, empty NUMBA_CACHE_DIR).",
+        (f"{start['cold_compile_s']:.2f} s cold (one run, empty NUMBA_CACHE_DIR)."
+         if start["cold_compile_s"] is not None else "cold start not measured (--quick)."),
         "", "Scipy runs cut by the time cap:", *(f"- {n}" for n in cut_notes or ["none"]),
         "", "Failed runs, and scipy runs faster than auto at equal error:",
         *(f"- {n}" for n in notes or ["none"])])
@@ -366,7 +380,7 @@ def main(argv=None) -> int:
         cut_notes += cuts(case, rows)
         print(f"[{time.perf_counter() - t0:5.1f} s] {case} done", file=sys.stderr, flush=True)
     t = time.perf_counter(), time.process_time()
-    start = startup(repeats=3)
+    start = startup(repeats=3, cold=mode == "full")
     lap("startup (subprocesses)", t)
     info = machine()
     head, full = report(info, results, methods, start, notes, cut_notes, cost, CAP[mode], ABORT[mode])
