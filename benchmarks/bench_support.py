@@ -338,7 +338,7 @@ def summary(results, methods, start, notes, cut_notes, cost, cap, abort) -> str:
         f"[min–max] of {cost['n']} loops); RHS bound = median cost x auto's n_rhs at target.",
         f"Process start to first trajectory: {start['warm_median_s']:.2f} s [{start['warm_min_s']:.2f}–"
         f"{start['warm_max_s']:.2f}] with the compile cache (median [min–max] of {len(start['warm_s'])}), "
-        (f"{start['cold_compile_s']:.2f} s cold (one run, empty NUMBA_CACHE_DIR)."
+        + (f"{start['cold_compile_s']:.2f} s cold (one run, empty NUMBA_CACHE_DIR)."
          if start["cold_compile_s"] is not None else "cold start not measured (--quick)."),
         "", "Scipy runs cut by the time cap:", *(f"- {n}" for n in cut_notes or ["none"]),
         "", "Failed runs, and scipy runs faster than auto at equal error:",
