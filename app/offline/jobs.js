@@ -1,6 +1,6 @@
 /* The offline page's job queues: each ``Channel`` runs one kind of job of arrays.js
  * (``MicropillarArrays.job``: "contact", "sweep", "uniform") in its own Web Worker, made
- * from the page's scripts kernel.js, solvers.js and arrays.js, so the page never freezes.
+ * from the page's scripts kernel*.js, solvers.js and arrays.js, so the page never freezes.
  *
  *   var c = new MicropillarJobs.Channel(kind, draw(result, ms, input), busy(on));
  *   c.start();          // its worker (none in a browser without workers: then on the page)
@@ -13,7 +13,8 @@
 (function (root) {
   "use strict";
   var RESTART_AFTER_MS = 300;
-  var WORKER_SCRIPTS = ["mp-kernel", "mp-solvers", "mp-arrays"];
+  var WORKER_SCRIPTS = ["mp-kernel_inputs", "mp-kernel_rhs", "mp-kernel_dopri5", "mp-kernel",
+                        "mp-solvers", "mp-arrays"];
   var WORKER_CODE =
     "\nself.onmessage = function (e) {\n" +
     "  var t0 = Date.now(), r;\n" +

@@ -1,0 +1,42 @@
+/* The offline page's Bokeh models, found by name in the page's document.
+ *
+ * Figures and their sources share names (the dashboard's "forces", "polar_FTx"): a model
+ * is found by its name and kind.
+ *
+ *   var m = MicropillarModels(doc);   // doc: window.Bokeh.documents[0]
+ *   m.model("tabs");                  // a widget or any other model that is neither
+ *   m.source("forces");               // a ColumnDataSource
+ *   m.figure("forces");               // a figure
+ *   m.setData({name: data, ...});     // new data for sources (repaints their figures only)
+ *   m.range(fig, "x_range", [lo, hi]);
+ */
+(function (root) {
+  "use strict";
+
+  function isSource(m) { return m.data !== undefined && m.selected !== undefined; }
+  function isFigure(m) { return m.x_range !== undefined && m.renderers !== undefined; }
+
+  root.MicropillarModels = function (doc) {
+    var byName = {};
+    doc.all_models.forEach(function (m) {
+      if (m.name) (byName[m.name] = byName[m.name] || []).push(m);
+    });
+    function find(name, test) {
+      var list = byName[name] || [];
+      for (var i = 0; i < list.length; i++) if (!test || test(list[i])) return list[i];
+      throw new Error("the page has no model named " + name);
+    }
+    function source(name) { return find(name, isSource); }
+    return {
+      model: function (name) {
+        return find(name, function (m) { return !isSource(m) && !isFigure(m); });
+      },
+      source: source,
+      figure: function (name) { return find(name, isFigure); },
+      setData: function (map) {
+        Object.keys(map).forEach(function (k) { source(k).data = map[k]; });
+      },
+      range: function (fig, which, lohi) { fig[which].setv({start: lohi[0], end: lohi[1]}); }
+    };
+  };
+}(this));
