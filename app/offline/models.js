@@ -1,4 +1,5 @@
-/* The offline page's Bokeh models, found by name in the page's document.
+/* The offline page's Bokeh models, found by name in the page's document, and their look
+ * (the screen's or the projector's, pack.py's styles).
  *
  * Figures and their sources share names (the dashboard's "forces", "polar_FTx"): a model
  * is found by its name and kind.
@@ -9,6 +10,8 @@
  *   m.figure("forces");               // a figure
  *   m.setData({name: data, ...});     // new data for sources (repaints their figures only)
  *   m.range(fig, "x_range", [lo, hi]);
+ *   m.look(styles, on);               // projector mode on or off: ``styles`` the pack's
+ *                                     // [model id, property, screen value, projector value]
  */
 (function (root) {
   "use strict";
@@ -17,7 +20,7 @@
   function isFigure(m) { return m.x_range !== undefined && m.renderers !== undefined; }
 
   root.MicropillarModels = function (doc) {
-    var byName = {};
+    var byName = {}, projectorShown = false;  // packed with the screen's look
     doc.all_models.forEach(function (m) {
       if (m.name) (byName[m.name] = byName[m.name] || []).push(m);
     });
@@ -36,7 +39,18 @@
       setData: function (map) {
         Object.keys(map).forEach(function (k) { source(k).data = map[k]; });
       },
-      range: function (fig, which, lohi) { fig[which].setv({start: lohi[0], end: lohi[1]}); }
+      range: function (fig, which, lohi) { fig[which].setv({start: lohi[0], end: lohi[1]}); },
+      look: function (styles, on) {
+        if (on === projectorShown) return;  // (setting the same styles again repaints all)
+        projectorShown = on;
+        styles.forEach(function (c) {
+          var m = doc.get_model_by_id(c[0]), attrs = {};
+          if (!m) return;
+          attrs[c[1]] = on ? c[3] : c[2];
+          m.setv(attrs);
+        });
+        document.documentElement.classList.toggle("projector", on);
+      }
     };
   };
 }(this));

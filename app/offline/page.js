@@ -87,10 +87,18 @@
   // (the headline's average over all orientations), so neither array delays the support.
   var Channel = window.MicropillarJobs.Channel;
   var statusTimer = null;  // "computing…" only for a contact that takes a while
-  var contactChannel = new Channel("contact", drawSupport, function (on) {
+  var contactChannel = new Channel("contact", drawWhenReady, function (on) {
     clearTimeout(statusTimer);
-    if (on) statusTimer = setTimeout(function () { model("status").text = "computing…"; }, 200);
+    if (on) statusTimer = setTimeout(function () { if (doc) model("status").text = "computing…"; }, 200);
   });
+  // The first contact is requested as the page's scripts run (``requestFirst``), while
+  // Bokeh builds its document: its worker computes meanwhile, and a result that comes
+  // before the document waits for it here ({key: its input, got: [result, ms, input]}).
+  var first = null;
+  function drawWhenReady(r, ms, input) {
+    if (doc) drawSupport(r, ms, input);
+    else if (first) first.got = [r, ms, input];
+  }
   var sweepChannel = new Channel("sweep", drawPolar, function (on) {
     if (on) setText("polar-status", "computing the 72 orientations in the page…");
   });
@@ -238,25 +246,16 @@
   function drawMap() { map.draw(); }
 
   // ------------------------------------------------------------ projector mode
-  var projectorShown = false;  // the look the page was packed with: the screen's
-  function applyProjector() {
-    var on = state.projector;
-    if (on === projectorShown) return;  // (setting the same styles again repaints all)
-    projectorShown = on;
-    CONFIG.projector.forEach(function (c) {
-      var m = doc.get_model_by_id(c[0]), attrs = {};
-      if (!m) return;
-      attrs[c[1]] = on ? c[3] : c[2];
-      m.setv(attrs);
-    });
-    document.documentElement.classList.toggle("projector", on);
-  }
+  function applyProjector() { models.look(CONFIG.projector, state.projector); }
 
   // ------------------------------------------------------------ the API
   var lastArrays = null, arraysDue = false;
   function compute() {
     keyClock.take();  // the key press (if any) whose redraw is timed
-    contactChannel.request(contactInput(state));
+    var input = contactInput(state), early = first;
+    first = null;
+    if (!early || early.key !== JSON.stringify(input)) contactChannel.request(input);
+    else if (early.got) drawSupport.apply(null, early.got);  // else drawn when it comes
     if (arraysKey(state) !== lastArrays) {
       lastArrays = arraysKey(state);
       arraysDue = true;  // requested once the support is drawn (countDrawn)
@@ -354,8 +353,9 @@
   // link has no fragment of its own.
   var INITIAL = document.getElementById("mp-initial");
   INITIAL = INITIAL ? JSON.parse(INITIAL.textContent) : "";
+  function linkFragment() { return location.hash && location.hash !== "#" ? location.hash : INITIAL; }
   function applyFragment() {
-    var parsed = parseFragment(location.hash && location.hash !== "#" ? location.hash : INITIAL);
+    var parsed = parseFragment(linkFragment());
     state = parsed.state;
     showNotice(parsed.notices);
     syncControls();
@@ -373,11 +373,20 @@
       state: function () { return state; },
       set: function (partial) { setState(partial, false); }
     });
-    contactChannel.start();  // the arrays' workers start at their first job
     applyFragment();
     window.addEventListener("hashchange", applyFragment);
     window.addEventListener("keydown", function (e) { map.keys(e); }, true);
   }
+
+  (function requestFirst() {  // before the document is built (``first``)
+    try {
+      var input = contactInput(parseFragment(linkFragment()).state);
+      first = {key: JSON.stringify(input), got: null};
+      contactChannel.request(input);  // starts its worker; the arrays' start at their first job
+    } catch (error) {
+      first = null;  // requested by applyFragment, once the document is there
+    }
+  })();
 
   (function waitForBokeh() {  // the document is built after the page's scripts ran
     var B = window.Bokeh;
