@@ -33,7 +33,7 @@
       D_X = S.D_X, D_Y = S.D_Y, S_TH = S.S_TH, S_R = S.S_R, TAU = S.TAU;
   var SERIES_BELOW = S.SERIES_BELOW, seriesCoefficients = S.seriesCoefficients, mu = S.mu,
       elastic = S.elastic;
-  var integrate = D.integrate, hermite = D.hermite;
+  var integrate = D.integrate;
   var OK = D.OK, STEP_BUDGET = D.STEP_BUDGET, TIME_BUDGET = D.TIME_BUDGET;
 
   // Status texts (model.contact.results.Status), by the integrator's status codes.
@@ -101,7 +101,7 @@
     var nr = REC.length, tEnd = kept[kept.length - 1][0];
     var names = ["x", "y", "v_x", "v_y", "theta", "W", "D_x", "D_y"];
     var out = {tau: new Float64Array(samples)};
-    names.forEach(function (n) { out[n] = new Float64Array(samples); });
+    var columns = names.map(function (n) { return (out[n] = new Float64Array(samples)); });
     var seg = 0;
     for (var s = 0; s < samples; s++) {
       var tau = samples === 1 ? 0.0 : s * (tEnd / (samples - 1));
@@ -109,9 +109,13 @@
       while (seg < kept.length - 2 && tau > kept[seg + 1][0]) seg++;
       var a = kept[seg], b = kept[seg + 1], dt = b[0] - a[0], th = (tau - a[0]) / dt;
       out.tau[s] = tau;
+      // The cubic Hermite of kernel_dopri5.js (``hermite``) on the rows' values and slopes
+      // in place: the same arithmetic, no views allocated per sample.
+      var h00 = (1 + 2 * th) * (1 - th) * (1 - th), h10 = th * (1 - th) * (1 - th),
+          h01 = th * th * (3 - 2 * th), h11 = th * th * (th - 1);
       for (var k = 0; k < nr; k++) {
-        out[names[k]][s] = hermite(a.subarray(1, 1 + nr), a.subarray(1 + nr),
-                                   b.subarray(1, 1 + nr), b.subarray(1 + nr), dt, th, k);
+        columns[k][s] = h00 * a[1 + k] + h10 * dt * a[1 + nr + k] + h01 * b[1 + k] +
+                        h11 * dt * b[1 + nr + k];
       }
     }
     var n = samples, r = new Float64Array(n), Fx = new Float64Array(n), Fy = new Float64Array(n),
