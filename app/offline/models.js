@@ -8,7 +8,8 @@
  *   m.model("tabs");                  // a widget or any other model that is neither
  *   m.source("forces");               // a ColumnDataSource
  *   m.figure("forces");               // a figure
- *   m.setData({name: data, ...});     // new data for sources (repaints their figures only)
+ *   m.setData({name: data, ...});     // new data for sources (repaints their figures only;
+ *                                     // a source whose data are the same is left alone)
  *   m.range(fig, "x_range", [lo, hi]);
  *   m.look(styles, on);               // projector mode on or off: ``styles`` the pack's
  *                                     // [model id, property, screen value, projector value]
@@ -18,6 +19,18 @@
 
   function isSource(m) { return m.data !== undefined && m.selected !== undefined; }
   function isFigure(m) { return m.x_range !== undefined && m.renderers !== undefined; }
+  /** True when ``data`` has the columns of ``now`` with the same values: setting it again
+   * would have Bokeh re-render the glyphs (labels: their canvas layers) for nothing. */
+  function same(now, data) {
+    var keys = Object.keys(data);
+    if (!now || keys.length !== Object.keys(now).length) return false;
+    return keys.every(function (k) {
+      var a = now[k], b = data[k];
+      if (!a || !b || a.length !== b.length) return false;
+      for (var i = 0; i < b.length; i++) if (a[i] !== b[i]) return false;
+      return true;
+    });
+  }
 
   root.MicropillarModels = function (doc) {
     var byName = {}, projectorShown = false;  // packed with the screen's look
@@ -37,7 +50,10 @@
       source: source,
       figure: function (name) { return find(name, isFigure); },
       setData: function (map) {
-        Object.keys(map).forEach(function (k) { source(k).data = map[k]; });
+        Object.keys(map).forEach(function (k) {
+          var src = source(k);
+          if (!same(src.data, map[k])) src.data = map[k];
+        });
       },
       range: function (fig, which, lohi) { fig[which].setv({start: lohi[0], end: lohi[1]}); },
       look: function (styles, on) {
