@@ -26,7 +26,9 @@ keydown event's time stamp to the first animation frame after the support's figu
 got the new contact (``explorer.keyToSupportMs``), and Playwright's round trip (press,
 then wait for ``explorer.drawn``: the texts too) for comparison. With ``--file`` (given
 more than once) the benchmark measures packed files instead of packing one, alternating
-between them (e.g. one packed from main, one from a branch: same machine, same load).
+between them (e.g. one packed from main, one from a branch: same machine, same load),
+the arrays too (one run of each regime per file in turn; the polar sweep's contacts
+counted).
 """
 from __future__ import annotations
 
@@ -65,7 +67,7 @@ ARRAYS = """
     const base = {k_r: r.k_r, k_theta: r.k_theta, F_N: 1, rtol: 1e-6}, t = {self: [], one: [], uniform: []};
     for (let j = 0; j < repeats; j++) {
       let t0 = performance.now();
-      A.orientationSweep(base, thetas, "self");
+      t.sweep_contacts = A.orientationSweep(base, thetas, "self").contacts;
       t.self.push(performance.now() - t0);
       t0 = performance.now();
       A.orientationSweep(base, thetas, 1.0);
@@ -184,15 +186,25 @@ def browser_figures(paths: list[Path], repeats: int, presses: int, array_repeats
             for path in paths:
                 got = key_presses(browser, path, (presses + 1) // 2)
                 redraw[path].append(got)
-        context = _context(browser)
-        page = context.new_page()
-        page.goto(paths[-1].as_uri())
-        page.wait_for_function("explorer.polarDrawn >= 1 && explorer.uniformDrawn >= 1",
-                               timeout=120_000)
-        times = page.evaluate(f"{TIMING}(MicropillarKernel, {json.dumps(CASE)}, {BATCH}, "
-                              f"{WARMUP}, {repeats})")
-        arrays = page.evaluate(f"{ARRAYS}(MicropillarArrays, JSON.parse(document.getElementById("
-                               f"'mp-config').textContent), {array_repeats})") if array_repeats else {}
+        pages = {}
+        for path in paths:
+            page = _context(browser).new_page()
+            page.goto(path.as_uri())
+            page.wait_for_function("explorer.polarDrawn >= 1 && explorer.uniformDrawn >= 1",
+                                   timeout=120_000)
+            pages[path] = page
+        times = pages[paths[-1]].evaluate(f"{TIMING}(MicropillarKernel, {json.dumps(CASE)}, "
+                                          f"{BATCH}, {WARMUP}, {repeats})")
+        arrays = {path: {} for path in paths}
+        for _ in range(array_repeats):  # alternating, one run of each regime at a time
+            for path in paths:
+                got = pages[path].evaluate(f"{ARRAYS}(MicropillarArrays, JSON.parse(document."
+                                           f"getElementById('mp-config').textContent), 1)")
+                for name, t in got.items():
+                    mine = arrays[path].setdefault(name, {"self": [], "one": [], "uniform": []})
+                    for key in ("self", "one", "uniform"):
+                        mine[key] += t[key]
+                    mine["contacts"], mine["sweep_contacts"] = t["contacts"], t["sweep_contacts"]
         browser.close()
     return dict(first=first, floor=floor, times=times, redraw=redraw, arrays=arrays)
 
@@ -247,11 +259,13 @@ def main() -> None:
                       f"{spread(in_page, digits=1)}, p95 {p95(in_page):.1f} ms")
             print(f"{path.name}: slider key press -> everything redrawn, Playwright's round "
                   f"trips: {spread(trips, digits=1)}, p95 {p95(trips):.1f} ms")
-    for name, t in figures["arrays"].items():
-        print(f"{name}, F_N = 1, Chromium: polar sweep (72 orientations), self-consistent beta "
-              f"{spread(t['self'], digits=0)}; at beta = 1 {spread(t['one'], digits=0)}; "
-              f"uniform array with self-consistent beta, tol 1e-3 ({t['contacts']} contacts) "
-              f"{spread(t['uniform'], digits=0)}")
+    for path, regimes in figures["arrays"].items():
+        for name, t in regimes.items():
+            print(f"{path.name}: {name}, F_N = 1, Chromium: polar sweep (72 orientations), "
+                  f"self-consistent beta ({t['sweep_contacts']} contacts) "
+                  f"{spread(t['self'], digits=0)}; at beta = 1 {spread(t['one'], digits=0)}; "
+                  f"uniform array with self-consistent beta, tol 1e-3 ({t['contacts']} "
+                  f"contacts) {spread(t['uniform'], digits=0)}")
     print(f"load average: {Path('/proc/loadavg').read_text().split()[:3]}")
     print("Figures measured while other jobs share the machine are not trustworthy: "
           "re-measure on a quiet one.")

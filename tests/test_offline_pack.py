@@ -35,3 +35,15 @@ def test_pack_refuses_a_missing_folder(tmp_path, capsys):
     assert "--out" in err and "does not exist" in err
     assert main(["pack", "--out", str(tmp_path)]) == 2
     assert "is a folder" in capsys.readouterr().err
+
+
+def test_the_offline_explorers_modules_are_small():
+    """Each module of the offline explorer (its page scripts, the kernel and the Python
+    that packs them) stays within the project's 400 lines, one concept each."""
+    from importlib import resources
+
+    here = resources.files("app.offline")
+    sizes = {p.name: len(p.read_text(encoding="utf-8").splitlines())
+             for p in here.iterdir() if p.name.endswith((".js", ".py"))}
+    assert {"page.js", "kernel.js", "pack.py"} <= set(sizes)
+    assert {name: n for name, n in sizes.items() if n > 400} == {}

@@ -78,7 +78,7 @@
     theta0s.forEach(function (t) {
       var input = assign({}, base, {theta0: t, samples: 0});
       var a = beta === "self" ? warmArray(input, predicted(solved)) : fixedArray(input, beta);
-      if (a.slope !== undefined) solved = isFinite(a.slope) && !a.beta_note ? solved.concat([a]).slice(-2) : [];
+      if (a.slope !== undefined) solved = isFinite(a.slope) && !a.beta_note ? solved.concat([a]).slice(-3) : [];
       keys.forEach(function (k) { out[k].push(a.contact[k]); });
       out.contacts += a.contacts === undefined ? 1 : a.contacts;
       out.beta.push(a.beta);
@@ -88,13 +88,18 @@
     return out;
   }
 
-  /** The next orientation's beta, extrapolated from the last two (or the last one). */
+  /** The next orientation's beta, extrapolated from the last three solved (a parabola
+   * through them on the equally spaced theta0 grid), the last two (a line) or the last one;
+   * the secant's first slope likewise from the last two slopes of G (the last one where
+   * that line is not positive). Only the starting point: the root is solved to BETA_XTOL. */
   function predicted(solved) {
     if (!solved.length) return null;
-    var last = solved[solved.length - 1];
-    if (solved.length < 2) return last;
-    var guess = Math.min(1.0, Math.max(S.BETA_MIN, 2 * last.beta - solved[0].beta));
-    return {beta: guess, slope: last.slope};
+    var n = solved.length, last = solved[n - 1], guess;
+    if (n < 2) return last;
+    if (n < 3) guess = 2 * last.beta - solved[0].beta;
+    else guess = 3 * last.beta - 3 * solved[1].beta + solved[0].beta;
+    var slope = 2 * last.slope - solved[n - 2].slope;
+    return {beta: Math.min(1.0, Math.max(S.BETA_MIN, guess)), slope: slope > 0 ? slope : last.slope};
   }
 
   /** A fixed array whose self-consistent beta starts from a neighbouring orientation's

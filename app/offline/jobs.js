@@ -1,10 +1,11 @@
 /* The offline page's job queues: each ``Channel`` runs one kind of job of arrays.js
  * (``MicropillarArrays.job``: "contact", "sweep", "uniform") in its own Web Worker, made
- * from the page's scripts kernel.js, solvers.js and arrays.js, so the page never freezes.
+ * from the page's scripts kernel*.js, solvers.js and arrays.js, so the page never freezes.
  *
  *   var c = new MicropillarJobs.Channel(kind, draw(result, ms, input), busy(on));
- *   c.start();          // its worker (none in a browser without workers: then on the page)
- *   c.request(input);   // the newest request wins (starts the worker if not yet started)
+ *   c.start(job);       // its worker (none in a browser without workers: then on the page)
+ *   c.request(input);   // the newest request wins (starts the worker if not yet started,
+ *                       // with this job in its code)
  *
  * One job at a time per channel; a newer request waits for the running job, or stops it
  * (the worker is replaced) when that job has run longer than RESTART_AFTER_MS: the reader
@@ -13,13 +14,15 @@
 (function (root) {
   "use strict";
   var RESTART_AFTER_MS = 300;
-  var WORKER_SCRIPTS = ["mp-kernel", "mp-solvers", "mp-arrays"];
+  var WORKER_SCRIPTS = ["mp-kernel_inputs", "mp-kernel_rhs", "mp-kernel_dopri5", "mp-kernel",
+                        "mp-solvers", "mp-arrays"];
   var WORKER_CODE =
-    "\nself.onmessage = function (e) {\n" +
+    "\nfunction run(job) {\n" +
     "  var t0 = Date.now(), r;\n" +
-    "  try { r = MicropillarArrays.job(e.data.kind, e.data.input); }\n" +
+    "  try { r = MicropillarArrays.job(job.kind, job.input); }\n" +
     "  catch (error) { r = {error: error.message}; }\n" +
-    "  self.postMessage({id: e.data.id, result: r, ms: Date.now() - t0});\n};\n";
+    "  self.postMessage({id: job.id, result: r, ms: Date.now() - t0});\n}\n" +
+    "self.onmessage = function (e) { run(e.data); };\n";
   var nextId = 1;
 
   function Channel(kind, draw, busy) {
@@ -27,32 +30,38 @@
     this.worker = null; this.inFlight = null; this.pending = null; this.started = false;
   }
 
-  Channel.prototype.start = function () {
+  /** A new worker; with ``job``, the worker runs it as soon as its scripts are read. A
+   * message posted to a worker that is starting waits for the page's thread to pass it
+   * on, and that thread may be busy for seconds (Bokeh building the document): a job in
+   * the worker's own code does not wait for it. */
+  Channel.prototype.start = function (job) {
     var self = this;
     this.started = true;
     try {
       var code = WORKER_SCRIPTS.map(function (id) {
         return document.getElementById(id).textContent;
-      }).join("\n") + WORKER_CODE;
+      }).join("\n") + WORKER_CODE + (job ? "run(" + JSON.stringify(
+        {id: job.id, kind: this.kind, input: job.input}) + ");\n" : "");
       var url = URL.createObjectURL(new Blob([code], {type: "text/javascript"}));
       var w = new Worker(url);
       URL.revokeObjectURL(url);
       w.onmessage = function (e) { self.finished(e.data.id, e.data.result, e.data.ms); };
       w.onerror = function () { self.worker = null; };
       this.worker = w;
+      if (job) job.sent = true;
     } catch (error) {
       this.worker = null;  // no workers (an old browser): compute on the page, one job at a time
     }
   };
 
   Channel.prototype.request = function (input) {
-    if (!this.started) this.start();
-    var job = {id: nextId++, input: input, started: Date.now()};
+    var job = {id: nextId++, input: input, started: Date.now(), sent: false};
+    if (!this.started) this.start(job);
     if (this.inFlight) {
       this.pending = job;
       if (this.worker && Date.now() - this.inFlight.started > RESTART_AFTER_MS) {
         this.worker.terminate();  // a long computation the reader has moved on from
-        this.start();
+        this.start(job);
         this.inFlight = null;
         this.pending = null;
         this.send(job);
@@ -67,7 +76,7 @@
     this.inFlight = job;
     this.busy(true);
     if (this.worker) {
-      this.worker.postMessage({id: job.id, kind: this.kind, input: job.input});
+      if (!job.sent) this.worker.postMessage({id: job.id, kind: this.kind, input: job.input});
       return;
     }
     setTimeout(function () {

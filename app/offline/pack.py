@@ -6,9 +6,9 @@ mode, the headline, and three tabs of the dashboard's figures (``figures.py``: t
 support with Fig. 7, Fig. 3, the energy bars of Eq. 12 and the player; the polar
 diagrams of Fig. 11; the shipped regime maps of Fig. 5) -- and saves it with BokehJS
 inlined (``bokeh.resources.INLINE``: no CDN, no font, no request). In the page the
-JavaScript port of the kernel (``kernel.js``) recomputes in Web Workers whenever a control
-moves, ``views.js`` turns its results into the figures' data and ``page.js`` holds the
-state, also in the URL fragment (``#k_r=3&k_theta=0.01&F_N=1&theta0_deg=90&tab=polar``).
+JavaScript port of the kernel (``kernel.js`` and its ``kernel_*.js``) recomputes in Web
+Workers whenever a control moves, ``views.js`` turns its results into the figures' data
+and ``page.js`` holds the state, also in the URL fragment (``#k_r=3&k_theta=0.01&F_N=1&theta0_deg=90&tab=polar``).
 docs/offline.md documents the page and its JavaScript API.
 
 The ranges, defaults, regimes and their titles are read here from ``model.controls``,
@@ -52,7 +52,8 @@ MAX_BYTES = 5 * 1024 * 1024
 OFFLINE_TABS = ("support", "polar", "map")
 TITLE = "Micropillar friction explorer (offline)"
 #: The page's scripts (app/offline/*.js), in loading order.
-SCRIPTS = ("kernel", "solvers", "arrays", "fragment", "jobs", "views", "paint", "mapview",
+SCRIPTS = ("kernel_inputs", "kernel_rhs", "kernel_dopri5", "kernel", "solvers", "arrays",
+           "fragment", "jobs", "views", "paint", "models", "readouts", "polarview", "mapview",
            "page")
 
 _SLIDERS = (  # (control, fragment key, title, log scale or the linear step)

@@ -19,7 +19,9 @@
  *   explorer.uniform -> the last uniform array drawn (its ``key``: k_r,k_theta,F_N,beta),
  *       explorer.uniformDrawn.
  * Reads its configuration (ranges, defaults, regimes: from the Python model at pack time)
- * from the JSON element #mp-config and the kernel from #mp-kernel.
+ * from the JSON element #mp-config and the kernel from #mp-kernel. Its Bokeh models are
+ * found by models.js; its texts are readouts.js's, Fig. 11 polarview.js's, Fig. 5
+ * mapview.js's.
  */
 (function () {
   "use strict";
@@ -38,20 +40,11 @@
   var state = FRAGMENT.defaults(CONFIG);
 
   // ------------------------------------------------------------ Bokeh models
-  // Figures and their sources share names (the dashboard's "forces", "polar_FTx"): a
-  // model is found by its name and kind.
-  var doc = null, byName = {};
-  function isSource(m) { return m.data !== undefined && m.selected !== undefined; }
-  function isFigure(m) { return m.x_range !== undefined && m.renderers !== undefined; }
-  function find(name, test) {
-    var list = byName[name] || [];
-    for (var i = 0; i < list.length; i++) if (!test || test(list[i])) return list[i];
-    throw new Error("the page has no model named " + name);
-  }
-  function model(name) { return find(name, function (m) { return !isSource(m) && !isFigure(m); }); }
-  function source(name) { return find(name, isSource); }
-  function figure(name) { return find(name, isFigure); }
-  function setData(map) { Object.keys(map).forEach(function (k) { source(k).data = map[k]; }); }
+  var doc = null, models = null, polar = null, texts = null;  // once the document is there
+  function model(name) { return models.model(name); }
+  function source(name) { return models.source(name); }
+  function figure(name) { return models.figure(name); }
+  function setData(map) { models.setData(map); }
   // Texts and the other views follow the support's figures after the paint (paint.js);
   // held while a newer contact is being computed.
   var PAINT = window.MicropillarPaint, later = new PAINT.Later(function () {
@@ -59,11 +52,7 @@
   }), keyClock = new PAINT.KeyClock(window);
   /** A Div's new text, written after the paint (the newest text for a Div wins). */
   function setText(name, text) { later.put(name, function () { model(name).text = text; }); }
-  function esc(text) {
-    return String(text).replace(/[&<>"]/g, function (c) {
-      return {"&": "&amp;", "<": "&lt;", ">": "&gt;", "\"": "&quot;"}[c];
-    });
-  }
+  function esc(text) { return texts.esc(text); }
   var syncing = false;  // true while the page itself moves the controls
   function syncControls() {
     syncing = true;
@@ -98,10 +87,18 @@
   // (the headline's average over all orientations), so neither array delays the support.
   var Channel = window.MicropillarJobs.Channel;
   var statusTimer = null;  // "computing…" only for a contact that takes a while
-  var contactChannel = new Channel("contact", drawSupport, function (on) {
+  var contactChannel = new Channel("contact", drawWhenReady, function (on) {
     clearTimeout(statusTimer);
-    if (on) statusTimer = setTimeout(function () { model("status").text = "computing…"; }, 200);
+    if (on) statusTimer = setTimeout(function () { if (doc) model("status").text = "computing…"; }, 200);
   });
+  // The first contact is requested as the page's scripts run (``requestFirst``), while
+  // Bokeh builds its document: its worker computes meanwhile, and a result that comes
+  // before the document waits for it here ({key: its input, got: [result, ms, input]}).
+  var first = null;
+  function drawWhenReady(r, ms, input) {
+    if (doc) drawSupport(r, ms, input);
+    else if (first) first.got = [r, ms, input];
+  }
   var sweepChannel = new Channel("sweep", drawPolar, function (on) {
     if (on) setText("polar-status", "computing the 72 orientations in the page…");
   });
@@ -140,7 +137,7 @@
     keyToSupportMs: keyClock.times
   };
 
-  function range(fig, which, lohi) { fig[which].setv({start: lohi[0], end: lohi[1]}); }
+  function range(fig, which, lohi) { models.range(fig, which, lohi); }
 
   function drawSupport(r, ms) {
     if (r.error) {
@@ -193,64 +190,23 @@
     requestArrays();
   }
 
-  function betaWords(beta, note) {
-    return "β = " + beta.toFixed(3) + (state.beta_mode === "fixed" ? " (fixed)" :
-      " (self-consistent" + (note ? ": " + note : "") + ")");
-  }
-
-  /** The dashboard's sentence: the fixed array at theta0 and, once computed for this
-   * state, the uniform array's average the slab feels (app.texts.FELT_AVERAGE). */
+  /** The headline for the current contact and, once computed for this state, the
+   * uniform array's average the slab feels. */
   function writeHeadline() {
-    var r = explorer.result;
+    var r = explorer.result, u = explorer.uniform, felt = null, note = "";
     if (!r) return;
-    var ratio = r.F_mean_x / CONFIG.mu0, u = explorer.uniform, felt = null, note = "";
     if (u && u.key === arraysKey(state)) {
       if (u.error || u.status === "budget") note = CONFIG.uniform_failed_note;
       else felt = u[CONFIG.average_columns[CONFIG.felt_average]];
     }
-    var text = VIEWS.headlineText(ratio, Number(state.theta0_deg.toFixed(6)), felt, note,
-                                   CONFIG.felt_words);
-    model("headline").text = (r.success ? "" : "<span style='color:#b00020'>" + esc(r.message) +
-                              "</span><br>") + esc(text);
-    model("headline-number").text = "F<sub>T,x</sub>/(μ<sub>0</sub>F<sub>N</sub>) = <b>" +
-      ratio.toFixed(3) + "</b> <span style='font-size:0.85em'>(every support at θ₀, Eq. 10; " +
-      "D<sub>y</sub>/D<sub>x</sub> = " + (r.D_y / r.D_x).toFixed(3) + "; " +
-      betaWords(r.params.beta, r.beta_note) + ")</span>";
-  }
-
-  /** A Markdown table (the dashboard's readouts) as HTML. */
-  function tableHtml(markdown) {
-    var parts = markdown.split("\n\n"), lines = parts[0].split("\n"), html = "<table class='mp-readout'>";
-    lines.forEach(function (line, i) {
-      if (i === 1) return;  // the alignment row
-      var cells = line.replace(/^\|\s*|\s*\|$/g, "").split(/\s*\|\s*/), tag = i === 0 ? "th" : "td";
-      html += "<tr>" + cells.map(function (c, j) {
-        var bold = /^\*\*(.*)\*\*$/.exec(c), text = bold ? "<b>" + esc(bold[1]) + "</b>" : esc(c);
-        return "<" + tag + (j ? " style='text-align:right'" : "") + ">" + text + "</" + tag + ">";
-      }).join("") + "</tr>";
-    });
-    return html + "</table>" + (parts[1] ? "<p>" + esc(parts[1]) + "</p>" : "");
+    texts.headline(r, felt, note);
   }
 
   // ------------------------------------------------------------ drawing: the uniform array
   function drawUniform(u, ms, input) {
     var key = [input.input.k_r, input.input.k_theta, input.input.F_N, input.beta].join(",");
     explorer.uniform = Object.assign({}, u, {key: key});
-    var row = null, extra = "";
-    if (u.error || u.status === "budget") {
-      extra = "<b>Not computed:</b> " + esc(u.error || u.message);
-    } else {
-      row = {FTx_over_mu0FN: u.FTx_over_mu0FN, FTx_over_mu0FN_duration: u.FTx_over_mu0FN_duration,
-             Dy_over_Dx: u.Dy_over_Dx, Nc_over_Nc0: u.Nc_over_Nc0, success: u.success,
-             quadrature_error_FTx: u.quadrature_error.FTx_over_mu0FN, n_failed: u.n_failed};
-      extra = betaWords(u.beta, "") + "; " + u.n_members + " orientations, " +
-        u.stats.trajectories + " contacts, computed in " + ms + " ms in the browser" +
-        (u.message !== "ok" ? " — " + esc(u.message) : "");
-    }
-    setText("uniform-readout", tableHtml(VIEWS.uniformMarkdown(
-      row, CONFIG.felt_average, CONFIG.uniform_failed_note, CONFIG.average_names,
-      CONFIG.average_columns, CONFIG.felt_average)) +
-      "<div style='font-size:0.85em;color:#555555'>" + extra + "</div>");
+    setText("uniform-readout", texts.uniform(u, ms));
     later.put("headline", writeHeadline);
     later.put("uniform-drawn", function () {
       explorer.uniformDrawn += 1;
@@ -271,26 +227,8 @@
   }
 
   // ------------------------------------------------------------ drawing: Fig. 11
-  var polarAxes = {}, polarKey = null;
-
-  function polarValues(sweep, key) {
-    return sweep.F_mean_x.map(function (_, i) {
-      if (key === "FTx") return sweep.F_mean_x[i] / CONFIG.mu0;
-      if (key === "FTy") return sweep.F_mean_y[i] / CONFIG.mu0;
-      return sweep.D_y[i] / sweep.D_x[i];
-    });
-  }
-
   function drawPolar(sweep, ms, input) {
-    if (sweep.error) { setText("polar-status", "<b>Not computed:</b> " + esc(sweep.error)); return; }
-    Object.keys(CONFIG.polar).forEach(function (key) {
-      var res = VIEWS.polarData(key, CONFIG.polar[key][2], sweep.theta0, polarValues(sweep, key));
-      polarAxes[key] = res[1];
-      setData(res[0]);
-    });
-    var failed = sweep.success.filter(function (ok) { return !ok; }).length;
-    setText("polar-status", sweep.theta0.length + " orientations computed in " + ms +
-      " ms in the browser" + (failed ? "; <b>" + failed + " contacts did not finish</b>" : ""));
+    if (!polar.draw(sweep, ms)) return;
     explorer.polar = Object.assign({}, sweep, {key: [input.base.k_r, input.base.k_theta,
                                                      input.base.F_N, input.beta].join(",")});
     markPolar();
@@ -299,14 +237,8 @@
       document.documentElement.setAttribute("data-polar", String(explorer.polarDrawn));
     });
   }
-
   function markPolar() {  // the current theta0 and its values (this contact's)
-    var r = explorer.result;
-    if (!r || !explorer.polar) return;
-    var now = {FTx: r.F_mean_x / CONFIG.mu0, FTy: r.F_mean_y / CONFIG.mu0, DyDx: r.D_y / r.D_x};
-    Object.keys(CONFIG.polar).forEach(function (key) {
-      if (polarAxes[key]) setData(VIEWS.polarNow(key, r.params.theta0, now[key], polarAxes[key]));
-    });
+    if (explorer.result && explorer.polar) polar.mark(explorer.result);
   }
 
   // ------------------------------------------------------------ drawing: Fig. 5
@@ -314,25 +246,16 @@
   function drawMap() { map.draw(); }
 
   // ------------------------------------------------------------ projector mode
-  var projectorShown = false;  // the look the page was packed with: the screen's
-  function applyProjector() {
-    var on = state.projector;
-    if (on === projectorShown) return;  // (setting the same styles again repaints all)
-    projectorShown = on;
-    CONFIG.projector.forEach(function (c) {
-      var m = doc.get_model_by_id(c[0]), attrs = {};
-      if (!m) return;
-      attrs[c[1]] = on ? c[3] : c[2];
-      m.setv(attrs);
-    });
-    document.documentElement.classList.toggle("projector", on);
-  }
+  function applyProjector() { models.look(CONFIG.projector, state.projector); }
 
   // ------------------------------------------------------------ the API
   var lastArrays = null, arraysDue = false;
   function compute() {
     keyClock.take();  // the key press (if any) whose redraw is timed
-    contactChannel.request(contactInput(state));
+    var input = contactInput(state), early = first;
+    first = null;
+    if (!early || early.key !== JSON.stringify(input)) contactChannel.request(input);
+    else if (early.got) drawSupport.apply(null, early.got);  // else drawn when it comes
     if (arraysKey(state) !== lastArrays) {
       lastArrays = arraysKey(state);
       arraysDue = true;  // requested once the support is drawn (countDrawn)
@@ -422,34 +345,17 @@
     setState({theta0_deg: deg >= 360 ? 0 : deg}, false);
   };
   explorer.parseFragment = parseFragment;
-  /** A figure's description for screen readers (``nameFigures``, app/figures/access_js.py):
-   * the state it shows, from the page's own texts (never per animation frame). */
-  function plain(html) {
-    return String(html || "").replace(/<[^>]*>/g, "").replace(/\s+/g, " ").trim();
-  }
-  function springs() {
-    return "k_r = " + KERNEL.formatG(state.k_r, 3) + ", k_θ = " + KERNEL.formatG(state.k_theta, 3) +
-      ", F_N = " + KERNEL.formatG(state.F_N, 3);
-  }
-  window.describeFigure = function (name) {
-    if (!doc) return null;
-    if (/^polar_/.test(name))
-      return "Fixed arrays against θ₀ for " + springs() + ": " + plain(model("polar-status").text);
-    if (name === "regime_map")
-      return plain(model("map-note").text).split(". Click")[0] + ". The current springs, " +
-        springs() + ", are marked.";
-    var headline = plain(model("headline").text);
-    if (!headline) return null;
-    return "One support, " + springs() + ", θ₀ = " + state.theta0_deg + "°: " + headline;
-  };
+  /** A figure's description for screen readers (``nameFigures``, app/figures/access_js.py). */
+  window.describeFigure = function (name) { return doc ? texts.describe(name) : null; };
   window.explorer = explorer;
 
   // The state the file was packed with (the dashboard's download button): used when the
   // link has no fragment of its own.
   var INITIAL = document.getElementById("mp-initial");
   INITIAL = INITIAL ? JSON.parse(INITIAL.textContent) : "";
+  function linkFragment() { return location.hash && location.hash !== "#" ? location.hash : INITIAL; }
   function applyFragment() {
-    var parsed = parseFragment(location.hash && location.hash !== "#" ? location.hash : INITIAL);
+    var parsed = parseFragment(linkFragment());
     state = parsed.state;
     showNotice(parsed.notices);
     syncControls();
@@ -459,19 +365,28 @@
 
   function start() {
     doc = window.Bokeh.documents[0];
-    doc.all_models.forEach(function (m) {
-      if (m.name) (byName[m.name] = byName[m.name] || []).push(m);
-    });
+    models = window.MicropillarModels(doc);
+    texts = window.MicropillarReadouts(CONFIG, {model: model, state: function () { return state; }});
+    polar = window.MicropillarPolarView(CONFIG, {setData: setData, setText: setText, esc: esc});
     map = window.MicropillarMapView(CONFIG, {
       source: source, model: model, figure: figure, clampRound: clampRound,
       state: function () { return state; },
       set: function (partial) { setState(partial, false); }
     });
-    contactChannel.start();  // the arrays' workers start at their first job
     applyFragment();
     window.addEventListener("hashchange", applyFragment);
     window.addEventListener("keydown", function (e) { map.keys(e); }, true);
   }
+
+  (function requestFirst() {  // before the document is built (``first``)
+    try {
+      var input = contactInput(parseFragment(linkFragment()).state);
+      first = {key: JSON.stringify(input), got: null};
+      contactChannel.request(input);  // starts its worker; the arrays' start at their first job
+    } catch (error) {
+      first = null;  // requested by applyFragment, once the document is there
+    }
+  })();
 
   (function waitForBokeh() {  // the document is built after the page's scripts ran
     var B = window.Bokeh;

@@ -1,0 +1,72 @@
+/* The offline page's Bokeh models, found by name in the page's document, and their look
+ * (the screen's or the projector's, pack.py's styles).
+ *
+ * Figures and their sources share names (the dashboard's "forces", "polar_FTx"): a model
+ * is found by its name and kind.
+ *
+ *   var m = MicropillarModels(doc);   // doc: window.Bokeh.documents[0]
+ *   m.model("tabs");                  // a widget or any other model that is neither
+ *   m.source("forces");               // a ColumnDataSource
+ *   m.figure("forces");               // a figure
+ *   m.setData({name: data, ...});     // new data for sources (repaints their figures only;
+ *                                     // a source whose data are the same is left alone)
+ *   m.range(fig, "x_range", [lo, hi]);
+ *   m.look(styles, on);               // projector mode on or off: ``styles`` the pack's
+ *                                     // [model id, property, screen value, projector value]
+ */
+(function (root) {
+  "use strict";
+
+  function isSource(m) { return m.data !== undefined && m.selected !== undefined; }
+  function isFigure(m) { return m.x_range !== undefined && m.renderers !== undefined; }
+  /** True when ``data`` has the columns of ``now`` with the same values: setting it again
+   * would have Bokeh re-render the glyphs (labels: their canvas layers) for nothing. */
+  function same(now, data) {
+    var keys = Object.keys(data);
+    if (!now || keys.length !== Object.keys(now).length) return false;
+    return keys.every(function (k) {
+      var a = now[k], b = data[k];
+      if (!a || !b || a.length !== b.length) return false;
+      for (var i = 0; i < b.length; i++) if (a[i] !== b[i]) return false;
+      return true;
+    });
+  }
+
+  root.MicropillarModels = function (doc) {
+    var byName = {}, projectorShown = false;  // packed with the screen's look
+    doc.all_models.forEach(function (m) {
+      if (m.name) (byName[m.name] = byName[m.name] || []).push(m);
+    });
+    function find(name, test) {
+      var list = byName[name] || [];
+      for (var i = 0; i < list.length; i++) if (!test || test(list[i])) return list[i];
+      throw new Error("the page has no model named " + name);
+    }
+    function source(name) { return find(name, isSource); }
+    return {
+      model: function (name) {
+        return find(name, function (m) { return !isSource(m) && !isFigure(m); });
+      },
+      source: source,
+      figure: function (name) { return find(name, isFigure); },
+      setData: function (map) {
+        Object.keys(map).forEach(function (k) {
+          var src = source(k);
+          if (!same(src.data, map[k])) src.data = map[k];
+        });
+      },
+      range: function (fig, which, lohi) { fig[which].setv({start: lohi[0], end: lohi[1]}); },
+      look: function (styles, on) {
+        if (on === projectorShown) return;  // (setting the same styles again repaints all)
+        projectorShown = on;
+        styles.forEach(function (c) {
+          var m = doc.get_model_by_id(c[0]), attrs = {};
+          if (!m) return;
+          attrs[c[1]] = on ? c[3] : c[2];
+          m.setv(attrs);
+        });
+        document.documentElement.classList.toggle("projector", on);
+      }
+    };
+  };
+}(this));
