@@ -66,8 +66,14 @@ def test_the_uniform_readout_shows_a_spinner_while_its_array_is_computed():
     view = ReadoutsView(state=state, results=results)
     text = view.uniform_pane.object
     results.busy = ["support", "uniform"]
+    # In the folded card nobody sees it: no spinner (Panel's loading overlay, a message).
+    assert not view.uniform_holder.loading
+    view.details.collapsed = False
     assert view.uniform_holder.loading and view.uniform_pane.object == text
     results.busy = ["support"]
+    assert not view.uniform_holder.loading
+    results.busy = ["support", "uniform"]
+    view.details.collapsed = True
     assert not view.uniform_holder.loading
 
 
