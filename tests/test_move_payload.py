@@ -8,7 +8,8 @@ import numpy as np
 import panel as pn
 import pytest
 from bokeh.document import Document
-from bokeh.models import ColumnDataSource
+from bokeh.models import ColumnDataSource, Div
+from panel.models.markup import HTML as PanelHTML
 from bokeh.protocol import Protocol
 
 from app.state import ExplorerState
@@ -62,6 +63,12 @@ def test_a_move_sends_only_the_data_that_changed(pool):
     assert not [e for e in events if getattr(e, "attr", None) == "filename"]
     # 31 arrays before the data that did not change was left out.
     assert _buffers(events) <= 29
+    # The texts that change at each move (headline, regime) are plain Divs: no Panel text
+    # pane renders them again.
+    panes = [e for e in events if isinstance(e.model, PanelHTML)]
+    assert not panes, [(e.model.css_classes, e.attr) for e in panes]
+    assert {"headline", "readout-regime"} <= {c for e in events if isinstance(e.model, Div)
+                                              for c in e.model.css_classes}
     # ... and what is on the page is the new result's.
     series = page.page.results.support.series
     np.testing.assert_allclose(page.source("forces").data["F_x"], series.F_x)
@@ -74,12 +81,12 @@ def test_a_tab_not_on_screen_gets_nothing_until_it_is_shown(pool):
     assert not [e for e in events if "readout-regime" in (getattr(e.model, "css_classes", None)
                                                           or ())]
     # The headline above every tab still follows the move.
-    assert "θ₀ = 100°" in page.page.headline.pane.object
+    assert "θ₀ = 100°" in page.page.headline.text
     events = page.move(tab="support")  # shown: drawn once, with the latest result
     assert {"orbit", "forces", "support_frames"} <= _changed_sources(events)
     series = page.page.results.support.series
     np.testing.assert_allclose(page.source("forces").data["F_x"], series.F_x)
-    assert "100" in page.page.readouts.regime_pane.object  # "turned from 100° ..."
+    assert "100" in page.page.readouts.regime.text  # "turned from 100° ..."
 
 
 def test_the_downloads_are_named_after_the_controls_when_asked_for(pool):
