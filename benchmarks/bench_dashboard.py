@@ -13,7 +13,11 @@
    itself taken from the shared cache so the compute is not counted twice; beside it, the
    same changes serialised one message each, as Bokeh's ``unhold()`` sends them (what
    one ``pn.io.hold`` saves).
-3. In headless Chromium (Debian's ``/usr/bin/chromium`` through Playwright, as the
+3. With ``--served K``, the same served (``served_moves.py``): ``panel serve app`` and K
+   protocol-level sessions moving sliders; the server process's CPU per move, with the
+   messages and binary arrays each move pushes (everything the server does for a
+   browser's move: the incoming message, Panel, the results applied, the messages sent).
+4. In headless Chromium (Debian's ``/usr/bin/chromium`` through Playwright, as the
    browser tests): ``panel serve app`` is started, the page load time is taken, and the
    theta0 slider is moved by key presses; each press is timed from ``keydown`` until the
    orbit data has changed (``change``) and until the next frame is painted (``paint``),
@@ -229,8 +233,22 @@ def browser_side(presses: int, out: Path) -> dict:
             "key press -> redrawn": percentiles(paint), **stages}
 
 
-def report(server: dict, browser: dict, cost: dict | None = None) -> str:
-    return "# Dashboard latency\n\n" + table(server, browser, cost)
+def report(server: dict, browser: dict, cost: dict | None = None,
+           served: dict | None = None) -> str:
+    return "# Dashboard latency\n\n" + table(server, browser, cost) + served_text(served)
+
+
+def served_text(served: dict | None) -> str:
+    """The served CPU per move as median [min–max] over blocks, with its payload."""
+    if not served:
+        return ""
+    ms = np.asarray(served["ms"])
+    return (f"\nServed, {served['sessions']} sessions, {len(ms)} blocks of "
+            f"{served['moves per block']} moves each: the server process's CPU per move "
+            f"{np.median(ms):.1f} [{ms.min():.1f}–{ms.max():.1f}] ms; per move "
+            f"{np.median(served['messages per move']):.1f} messages, "
+            f"{np.median(served['arrays per move']):.1f} binary arrays (load average "
+            f"{served['load average'][0]:.1f} before, {served['load average'][1]:.1f} after).\n")
 
 
 def table(server: dict, browser: dict, cost: dict | None = None) -> str:
@@ -258,6 +276,8 @@ def main():
     ap.add_argument("--quick", action="store_true", help="fewer samples (for CI)")
     ap.add_argument("--out", default="bench-out", help="output folder (default bench-out)")
     ap.add_argument("--no-browser", action="store_true", help="server-side part only")
+    ap.add_argument("--served", type=int, default=0, metavar="K",
+                    help="also serve the app and measure its CPU per move with K sessions")
     args = ap.parse_args()
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -267,13 +287,21 @@ def main():
     start = time.perf_counter()
     cost = server_cost(3 if args.quick else 10)
     phases["server cost per page and update"] = time.perf_counter() - start
+    served = None
+    if args.served:
+        from served_moves import served_cost
+        start = time.perf_counter()
+        served = served_cost(out, sessions=args.served, moves=3 if args.quick else 10,
+                             blocks=2 if args.quick else 5)
+        phases["served moves"] = time.perf_counter() - start
     start = time.perf_counter()
     browser = {} if args.no_browser else browser_side(6 if args.quick else 30, out)
     phases["browser (server start, page load, key presses)"] = time.perf_counter() - start
-    text = report(server, browser, cost)
+    text = report(server, browser, cost, served)
     (out / "dashboard.md").write_text(text)
     (out / "dashboard.json").write_text(json.dumps({"server": server, "browser": browser,
                                                     "server_cost": cost,
+                                                    "served": served,
                                                     "phases_wall_s": phases}, indent=1))
     print(text)
 

@@ -223,6 +223,9 @@ def test_the_overlays_carry_both_data_sets_and_hide_without_a(pool):
         # The radial axis covers both curves: A is not drawn past the rim.
         assert max(a_curve["value"]) <= r_hi + 1e-12 and min(a_curve["value"]) >= r_lo - 1e-12
     state.clear_pin()
+    # The One-support tab's overlays follow once that tab is shown (not while hidden).
+    assert len(src["orbit_A"].data["x"]) > 0
+    state.tab = "support"
     assert len(src["orbit_A"].data["x"]) == 0
     assert not any(r.visible for r in page.support._pinned[page.support.scene])
     assert not page.readouts.compare_pane.visible

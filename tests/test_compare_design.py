@@ -233,7 +233,7 @@ def test_the_headline_names_a_and_b_minus_a(page):
     from app.views.readouts import pinned_clause
 
     r = page.results
-    html = page.headline.pane.object
+    html = page.headline.text
     a_fixed, b_fixed = r.support_A.fixed.FTx_over_mu0FN, r.support.fixed.FTx_over_mu0FN
     assert "A (pinned)" in html and f"B − A = {b_fixed - a_fixed:+.3g}" in html
     assert pinned_clause(0.9, 60.0, None, 0.95, None) == (
@@ -258,7 +258,7 @@ def test_clearing_a_hides_the_design_overlays(page):
         assert len(view._map_sources["design_point_A"].data["k_r"]) == 0
         assert len(view._polar_sources["design_curve_A"].data["x"]) == 0
         assert not any(x.visible for renderers in view._pinned.values() for x in renderers)
-        assert "A (pinned)" not in page.headline.pane.object
+        assert "A (pinned)" not in page.headline.text
     finally:
         page.state.pinned = pinned
 

@@ -92,9 +92,11 @@ def test_without_a_result_the_text_says_it_is_being_computed():
 def test_the_page_s_regime_panel_follows_the_computed_support():
     from app.state import ExplorerState
     from app.views import Dashboard
+    from app.views.text_div import markdown_html
 
     page = Dashboard(ExplorerState())
     page.state.param.update(k_r=0.01, k_theta=0.01, F_N=10.0)
-    text = page.readouts.regime_pane.object
-    assert text == regime_markdown("soft", page.results.support)
+    text = page.readouts.regime.text
+    assert text == markdown_html(regime_markdown("soft", page.results.support))
+    assert text.startswith("<p><strong>Soft (both springs soft).</strong>")
     assert f"{page.results.support.result.r_max:.3g} r₀" in text

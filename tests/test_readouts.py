@@ -49,12 +49,12 @@ def test_the_page_headline_follows_the_results():
     from app.views import Dashboard
 
     page = Dashboard(ExplorerState())
-    text = page.headline.pane.object
+    text = page.headline.text
     fixed = page.results.support.fixed.FTx_over_mu0FN
     assert change_words(fixed) in text and "θ₀ = 90°" in text
     page.state.theta0 = 30.0
-    assert "θ₀ = 30°" in page.headline.pane.object
-    assert change_words(page.results.support.fixed.FTx_over_mu0FN) in page.headline.pane.object
+    assert "θ₀ = 30°" in page.headline.text
+    assert change_words(page.results.support.fixed.FTx_over_mu0FN) in page.headline.text
 
 
 def test_the_uniform_readout_shows_a_spinner_while_its_array_is_computed():
@@ -66,8 +66,14 @@ def test_the_uniform_readout_shows_a_spinner_while_its_array_is_computed():
     view = ReadoutsView(state=state, results=results)
     text = view.uniform_pane.object
     results.busy = ["support", "uniform"]
+    # In the folded card nobody sees it: no spinner (Panel's loading overlay, a message).
+    assert not view.uniform_holder.loading
+    view.details.collapsed = False
     assert view.uniform_holder.loading and view.uniform_pane.object == text
     results.busy = ["support"]
+    assert not view.uniform_holder.loading
+    results.busy = ["support", "uniform"]
+    view.details.collapsed = True
     assert not view.uniform_holder.loading
 
 
@@ -91,7 +97,7 @@ def test_the_headline_settles_on_every_tab(pool, tab, monkeypatch):
     results.start()
     view = HeadlineView(state=state, results=results)
     state.param.update(k_r=0.01, k_theta=3.0)  # the slider, moved on this tab
-    text = view.pane.object
+    text = view.text
     assert "being computed" not in text
     felt = results.uniform["FTx_over_mu0FN_duration"]
     assert results.uniform is not None and f"the slab feels {change_words(felt)}" in text
@@ -108,7 +114,7 @@ def test_the_headline_quotes_the_force_the_slab_feels_whatever_the_plots_average
         state = ExplorerState(k_r=0.01, k_theta=3.0, average=average)
         results = SessionResults(state)
         results.start()
-        text = HeadlineView(state=state, results=results).pane.object
+        text = HeadlineView(state=state, results=results).text
         assert f"{results.uniform['FTx_over_mu0FN_duration']:.3f}" == "0.845"
         assert "15.5 % below a rigid surface (each support counted for as long" in text
         assert change_words(results.uniform["FTx_over_mu0FN"]) not in text

@@ -2,11 +2,12 @@
 
 Every figure function builds a complete figure from plain data; its data sources carry
 ``name``s so a view can later replace their ``.data`` in place (no new figure, so zoom and
-axes are kept and nothing flickers) and browser tests can find them in
-``Bokeh.documents[0]``. ``style`` switches a figure between screen and projector mode.
+axes are kept and nothing flickers; a source whose data did not change is not sent again)
+and browser tests can find them in ``Bokeh.documents[0]``. ``style`` switches a figure between screen and projector mode.
 """
 from __future__ import annotations
 
+import numpy as np
 from bokeh.models import (ColorBar, ColumnDataSource, GlyphRenderer, Label, LabelSet, Legend,
                           Text, Title)
 from bokeh.plotting import figure
@@ -59,9 +60,36 @@ def annotation(fig, name: str):
 
 
 def update(named: dict, data: dict) -> None:
-    """Replace the data of named sources: ``named`` from ``sources``, ``data`` name -> dict."""
+    """Replace the data of named sources: ``named`` from ``sources``, ``data`` name -> dict.
+
+    A source whose new columns equal those it holds is left alone: Bokeh would send its
+    every column to the page again (a message part per array), for nothing."""
     for name, columns in data.items():
-        named[name].data = columns
+        if not same_columns(named[name].data, columns):
+            named[name].data = columns
+
+
+def same_columns(old: dict, new: dict) -> bool:
+    """Whether two sources' data are equal: the same columns, each of the same kind
+    (array or list) and values (NaN counts as a change)."""
+    if old.keys() != new.keys():
+        return False
+    for key, value in new.items():
+        before = old[key]
+        if isinstance(value, np.ndarray) or isinstance(before, np.ndarray):
+            if not (isinstance(value, np.ndarray) and isinstance(before, np.ndarray)
+                    and value.dtype == before.dtype and np.array_equal(value, before)):
+                return False
+        elif type(value) is not type(before) or not _equal(value, before):
+            return False
+    return True
+
+
+def _equal(a, b) -> bool:
+    try:
+        return bool(a == b)
+    except ValueError:  # lists holding arrays: compared member by member
+        return len(a) == len(b) and all(np.array_equal(x, y) for x, y in zip(a, b))
 
 
 def _base_width(glyph) -> float | None:

@@ -165,7 +165,8 @@ class Dashboard(pn.viewable.Viewer):
         state.param.watch(self._collect, "notice")
         state.param.watch(self._on_projector, "projector")
         state.param.watch(self._schedule_url, list(URL_KEYS))
-        state.param.watch(self._name_downloads, ["k_r", "k_theta", "F_N", "theta0"])
+        # The files are named when asked for (``_trajectory_csv``, ``_polar_csv``): a name
+        # written at every slider move would cost the page a message per move.
         self._name_downloads()
         self._set_active(state.tab)
         results.start()
@@ -273,6 +274,7 @@ class Dashboard(pn.viewable.Viewer):
 
     # ------------------------------------------------------------------ downloads
     def _trajectory_csv(self):
+        self._name_downloads()  # read by the button once this returns
         r = self.results  # with a pinned state A, A's trajectory beside B's
         return io.StringIO(trajectory_csv(r.support, pinned=r.support_A,
                                           comparing=r.comparing))
@@ -281,6 +283,7 @@ class Dashboard(pn.viewable.Viewer):
         """The polar sweep of the current springs and load (and of a pinned state A), from
         what is computed: never waits. If it is not computed yet, the sweep starts and the
         file says so."""
+        self._name_downloads()  # read by the button once this returns
         r = self.results
         slots = [s for s in (r.slots["polar"], r.pinned_slot("polar")) if s is not None]
         for slot in slots:
@@ -291,7 +294,8 @@ class Dashboard(pn.viewable.Viewer):
                                "(the Polar tab shows it): download again in a moment.\n")
         return io.StringIO(sweep_csv(r.polar, pinned=r.polar_A, comparing=r.comparing))
 
-    def _name_downloads(self, *_events) -> None:
+    def _name_downloads(self) -> None:
+        """The downloads' file names, from the controls they are asked for at."""
         s = self.state
         tag = f"kr{s.k_r:.3g}_kt{s.k_theta:.3g}_FN{s.F_N:.3g}"
         self.downloads[0].filename = f"trajectory_{tag}_theta0_{s.theta0:g}.csv"

@@ -25,6 +25,7 @@ from .access import LiveDescription, figure_classes
 from .click_keys import theta_steps
 from .data_table import DataTable
 from .layout import grid_css
+from .shown import WhenShown
 
 KEYS = ("FTx", "DyDx", "FTy")
 
@@ -38,6 +39,7 @@ class PolarView(pn.viewable.Viewer):
     def __init__(self, **params):
         super().__init__(**params)
         self._doc = pn.state.curdoc
+        self.when_shown = WhenShown(self.state, "polar")  # the marks wait off the tab
         self._axes = {}
         self.figures = {k: F.polar_figure(k, width=325, height=340) for k in KEYS}
         for fig in self.figures.values():  # fill the window; match_aspect keeps them round
@@ -120,6 +122,9 @@ class PolarView(pn.viewable.Viewer):
     # ------------------------------------------------------------------ current theta0
     @param.depends("results.support", watch=True)
     def _mark(self) -> None:
+        self.when_shown.run(self._mark_theta0)
+
+    def _mark_theta0(self) -> None:
         data = self.results.support
         values = {"FTx": None, "DyDx": None, "FTy": None}
         theta0 = math.radians(self.state.theta0)

@@ -19,6 +19,8 @@ from ..state import ExplorerState
 from ..motion_words import change_words, regime_markdown
 from ..texts import AVERAGE_NAMES, FELT_AVERAGE, FELT_WORDS
 from .compare_tables import difference
+from .shown import WhenShown
+from .text_div import TextDiv, markdown_html
 
 TABLE_CSS = ("table {border-collapse: collapse; width: 100%;} "
              "td, th {padding: 2px 6px; line-height: 1.25;}")
@@ -155,9 +157,9 @@ class ReadoutsView(pn.viewable.Viewer):
         style = {"font-size": "0.92em"}
         compact = [TABLE_CSS]
         wide = dict(sizing_mode="stretch_width", margin=(0, 5))
-        self.regime_pane = pn.pane.Markdown(regime_markdown(self.state.regime,
-                                                            self.results.support),
-                                            css_classes=["readout-regime"], styles=style, **wide)
+        self.regime = TextDiv(markdown_html(regime_markdown(self.state.regime,
+                                                            self.results.support)),
+                              "readout-regime", styles=style)
         self.fixed_pane = pn.pane.Markdown(fixed_markdown(self.results.support),
                                            css_classes=["readout-fixed"], styles=style,
                                            stylesheets=compact, **wide)
@@ -182,11 +184,14 @@ class ReadoutsView(pn.viewable.Viewer):
             margin=(6, 5))
         # The folded card's tables are written when it is opened: text no reader sees
         # would cost the server a Markdown render and the page a message at every move.
+        # Off the One-support tab, nothing here is written until the tab is shown.
         self._stale: set[str] = set()
+        self.when_shown = WhenShown(self.state, "support")
         self.details.param.watch(lambda event: self._opened(), "collapsed")
         self._compare()
 
     def _opened(self) -> None:
+        self._mark_busy()
         if not self.details.collapsed:
             stale, self._stale = self._stale, set()
             if "fixed" in stale:
@@ -199,18 +204,28 @@ class ReadoutsView(pn.viewable.Viewer):
         if self.details.collapsed:
             self._stale.add("fixed")
             return
+        self.when_shown.run(self._write_fixed)
+
+    def _write_fixed(self) -> None:
         self.fixed_pane.object = fixed_markdown(self.results.support)
 
     @param.depends("results.support", watch=True)
     def _on_regime(self) -> None:
+        self.when_shown.run(self._write_regime)
+
+    def _write_regime(self) -> None:
         # Written from the computed support (its own regime): numbers and words agree.
-        self.regime_pane.object = regime_markdown(self.state.regime, self.results.support)
+        self.regime.text = markdown_html(regime_markdown(self.state.regime,
+                                                         self.results.support))
 
     @param.depends("results.uniform", "results.errors", "state.average", watch=True)
     def _show_uniform(self) -> None:
         if self.details.collapsed:
             self._stale.add("uniform")
             return
+        self.when_shown.run(self._write_uniform)
+
+    def _write_uniform(self) -> None:
         failed = bool(self.results.errors.get("uniform"))
         self.uniform_pane.object = uniform_markdown(
             None if failed else self.results.uniform, self.state.average,
@@ -228,10 +243,16 @@ class ReadoutsView(pn.viewable.Viewer):
 
     @param.depends("results.busy", watch=True)
     def _busy(self) -> None:
-        self.uniform_holder.loading = "uniform" in self.results.busy
+        self.when_shown.run(self._mark_busy)
+
+    def _mark_busy(self) -> None:
+        # A spinner in a folded card would cost a message (and Panel's loading overlay)
+        # at every move for nothing on screen: it shows in the opened card only.
+        self.uniform_holder.loading = ("uniform" in self.results.busy
+                                       and not self.details.collapsed)
 
     def __panel__(self):
-        return pn.Column(self.regime_pane, self.compare_pane, self.details, css_classes=["readouts", "side-column"],
+        return pn.Column(self.regime.pane, self.compare_pane, self.details, css_classes=["readouts", "side-column"],
                          width=300, margin=0)
 
 
@@ -243,9 +264,9 @@ class HeadlineView(pn.viewable.Viewer):
 
     def __init__(self, **params):
         super().__init__(**params)
-        self.pane = pn.pane.HTML("", css_classes=["headline"], sizing_mode="stretch_width",
-                                 margin=(2, 10), styles={"font-size": "1.15em",
-                                                         "font-weight": "600"})
+        self.headline = TextDiv("", "headline", margin=(2, 10),
+                                styles={"font-size": "1.15em", "font-weight": "600"})
+        self.pane = self.headline.pane
         self._write()
         self._for_tab()
 
@@ -281,7 +302,12 @@ class HeadlineView(pn.viewable.Viewer):
                                    a_uniform, fixed, uniform)
             html += ("<br><span class='headline-compare' style='font-weight: 400; "
                      f"font-size: 0.85em'>{clause}.</span>")
-        self.pane.object = html
+        self.headline.text = html
+
+    @property
+    def text(self) -> str:
+        """The headline's HTML."""
+        return self.headline.text
 
     def __panel__(self):
         return self.pane

@@ -39,6 +39,7 @@ from ..state import ExplorerState
 from .access import LiveDescription, figure_classes
 from .export import AnimationExport
 from .layout import grid_css, mode_classes, projector_grid
+from .shown import WhenShown
 
 
 log = logging.getLogger(__name__)
@@ -64,6 +65,8 @@ class SupportView(pn.viewable.Viewer):
     def __init__(self, **params):
         super().__init__(**params)
         self._doc = pn.state.curdoc
+        #: Off its tab, the view is redrawn when the tab is shown (not at every move).
+        self.when_shown = WhenShown(self.state, "support")
         #: Server-side seconds from a control change to updated plot data (latest last).
         self.timings: collections.deque = collections.deque(maxlen=500)
         self.spinner = pn.indicators.LoadingSpinner(value=True, size=24, visible=False,
@@ -124,6 +127,9 @@ class SupportView(pn.viewable.Viewer):
     # ------------------------------------------------------------------ results
     @param.depends("results.support", watch=True)
     def _draw(self) -> None:
+        self.when_shown.run(self._draw_support)
+
+    def _draw_support(self) -> None:
         data = self.results.support
         if data is None or data.result is None or data.series is None:
             return
@@ -173,6 +179,9 @@ class SupportView(pn.viewable.Viewer):
 
     @param.depends("results.support_A", watch=True)
     def _draw_pinned(self) -> None:
+        self.when_shown.run(self._draw_support_A)
+
+    def _draw_support_A(self) -> None:
         """A pinned state's path and histories, muted under B's (``app.compare``)."""
         a = self.results.support_A
         on = a is not None and a.series is not None
