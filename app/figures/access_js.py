@@ -3,9 +3,11 @@ project writes (``app.figures.animation_page``): Bokeh and Panel draw each widge
 its own shadow root, out of reach of the page's stylesheet and of ARIA attributes set from
 Python, so a script walks the shadow roots, again whenever one of them changes.
 
-* ``WATCH_ROOTS_JS`` defines ``watchRoots(tend, done)``: calls ``tend(root)`` for the
-  document and every shadow root now and after each change (debounced, 100 ms), then
-  ``done(roots)``; returns a function that stops watching. Changes inside an element of
+* ``WATCH_ROOTS_JS`` defines ``watchRoots(tend, done, wide)``: calls ``tend(root)`` for
+  the document and every shadow root now and after each change (debounced, 100 ms), then
+  ``done(roots)``; returns a function that stops watching. A change inside one root that
+  adds no shadow root (a slider's value, a label's text) tends that root alone, at once,
+  unless it is inside an element matching the CSS selector ``wide``. Changes inside an element of
   class ``LIVE_CLASS`` (a player's readouts, rewritten while it plays: plain text, no
   control) are not changes of the page's structure and start no walk;
 * ``HANDLE_NAMES_JS`` defines ``nameHandles(root)``: names each slider handle
@@ -27,17 +29,33 @@ LIVE_CLASS = "mp-live-text"
 WATCH_ROOTS_JS = f"""
 const LIVE_CLASS = {LIVE_CLASS!r};
 """ + """
-function watchRoots(tend, done) {
+function watchRoots(tend, done, wide) {
   const watched = new WeakSet();
   let pending = null;
-  // Inside a live text box (its shadow root's host has LIVE_CLASS): only text changes.
-  const live = (record) => {
+  // Not a change of the page's structure: inside a live text box (its shadow root's host
+  // has LIVE_CLASS: only text changes), or a stylesheet's text (BokehJS writes each
+  // renderer's position as a <style>'s text whenever it paints it).
+  const still = (record) => {
+    if (record.target.nodeName === "STYLE") return true;
     const root = record.target.getRootNode && record.target.getRootNode();
     const host = root && root.host;
     return !!(host && host.classList && host.classList.contains(LIVE_CLASS));
   };
+  // A change inside one root that adds no shadow root (a slider's value, its tooltip, a
+  // label's text) needs only that root tended, not the page walked (a walk costs a frame
+  // of a playing animation); a change inside an element matching ``wide`` concerns the
+  // whole page (a description of figures elsewhere).
+  const hosts = (node) => node.nodeType === 1 && (node.shadowRoot !== null ||
+    [...node.querySelectorAll("*")].some((el) => el.shadowRoot !== null));
+  const local = (record) => {
+    if (wide && record.target.closest && record.target.closest(wide)) return false;
+    return ![...record.addedNodes].some(hosts);
+  };
   const observer = new MutationObserver((records) => {
-    if (pending === null && !records.every(live)) pending = setTimeout(scan, 100);
+    const changed = records.filter((r) => !still(r));
+    if (pending !== null || changed.length === 0) return;
+    if (!changed.every(local)) { pending = setTimeout(scan, 100); return; }
+    for (const root of new Set(changed.map((r) => r.target.getRootNode()))) tend(root);
   });
   function scan() {
     pending = null;

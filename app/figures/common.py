@@ -7,9 +7,11 @@ and browser tests can find them in ``Bokeh.documents[0]``. ``style`` switches a 
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
-from bokeh.models import (ColorBar, ColumnDataSource, GlyphRenderer, Label, LabelSet, Legend,
-                          Text, Title)
+from bokeh.models import (ColorBar, ColumnDataSource, CustomJS, GlyphRenderer, Label, LabelSet,
+                          Legend, Text, Title)
 from bokeh.plotting import figure
 
 #: Okabe-Ito colours: distinguishable with colour-blindness and on a projector.
@@ -42,19 +44,24 @@ def source(name: str, data: dict) -> ColumnDataSource:
 
 def sources(fig) -> dict:
     """The named data sources of ``fig`` (glyphs' and annotations'): name -> source."""
-    named = {r.data_source.name: r.data_source for r in fig.renderers
-             if isinstance(r, GlyphRenderer) and r.data_source.name}
-    for model in (*fig.center, *fig.above, *fig.below, *fig.left, *fig.right):
-        src = getattr(model, "source", None)
+    named = {}
+    for model in _renderers(fig):
+        src = model.data_source if isinstance(model, GlyphRenderer) else getattr(model, "source", None)
         if isinstance(src, ColumnDataSource) and src.name:
             named[src.name] = src
     return named
 
 
+def _renderers(fig):
+    """Everything ``fig`` draws: its renderers (glyphs, an annotation placed among them)
+    and its annotations."""
+    return (*fig.renderers, *fig.center, *fig.above, *fig.below, *fig.left, *fig.right)
+
+
 def annotation(fig, name: str):
     """The annotation (Label, Span, ...) of ``fig`` called ``name``, or None."""
-    for model in (*fig.center, *fig.above, *fig.below, *fig.left, *fig.right):
-        if getattr(model, "name", None) == name:
+    for model in _renderers(fig):
+        if not isinstance(model, GlyphRenderer) and getattr(model, "name", None) == name:
             return model
     return None
 
@@ -90,6 +97,57 @@ def _equal(a, b) -> bool:
         return bool(a == b)
     except ValueError:  # lists holding arrays: compared member by member
         return len(a) == len(b) and all(np.array_equal(x, y) for x, y in zip(a, b))
+
+
+#: The level of what a player moves every frame (``animated``).
+ANIMATED = "overlay"
+
+
+def animated(*models) -> None:
+    """Mark what a player moves every frame (glyph renderers, annotations): BokehJS draws
+    it on the plot's overlay layer, a canvas of its own that it repaints alone when only
+    such models changed -- the axes, grid, legend, colour bar and still glyphs are not
+    painted again each frame (their text, each drawing reading the page's CSS, was most of
+    a frame's work). Annotations there are clipped to the plot area; glyphs are not, so a
+    moving glyph's data must stay inside the plot's ranges."""
+    for model in models:
+        model.level = ANIMATED
+
+
+def legend_stand_ins(fig) -> None:
+    """Legend entries of ``fig`` that name an ``animated`` glyph name a still stand-in
+    instead: a Bokeh legend draws its entries anew (new elements, a page layout) whenever a
+    renderer it names or that renderer's data changes, i.e. every frame. The stand-in
+    shares the glyph, draws nothing in the plot and hides or shows the glyph with it
+    (``click_policy="hide"``)."""
+    for legend in fig.select(type=Legend):
+        for item in legend.items:
+            item.renderers = [stand_in(fig, r) if r.level == ANIMATED else r
+                              for r in item.renderers]
+
+
+def stand_in(fig, renderer: GlyphRenderer) -> GlyphRenderer:
+    """A renderer of ``renderer``'s glyph that a legend draws and the plot does not: its
+    rows (at least one) have every number NaN and keep their text (colours, labels of a
+    ``legend_field``). Its visibility is passed on to ``renderer``."""
+    data = renderer.data_source.data
+    rows = max(1, max((len(v) for v in data.values()), default=0))
+    columns = {k: [v[i] if i < len(v) and isinstance(v[i], str) else math.nan
+                   for i in range(rows)] for k, v in data.items()}
+    still = GlyphRenderer(data_source=ColumnDataSource(columns), glyph=renderer.glyph,
+                          visible=renderer.visible)
+    fig.renderers.append(still)
+    pass_on_visible(still, renderer)
+    return still
+
+
+def pass_on_visible(model, to) -> None:
+    """``to`` is shown and hidden with ``model`` (a legend's stand-in). The callback finds
+    ``to`` by its id, not as an argument: a legend follows every model its entries refer
+    to, callbacks' arguments included, and ``to`` changes every frame."""
+    model.js_on_change("visible", CustomJS(code=f"""
+        const to = cb_obj.document.get_model_by_id({to.id!r});
+        if (to && to.visible !== cb_obj.visible) to.visible = cb_obj.visible;"""))
 
 
 def _base_width(glyph) -> float | None:

@@ -11,12 +11,15 @@ from bokeh.models import FactorRange, Label, Range1d, Span
 
 from model.contact.friction import mu, mu0
 
-from .common import BLACK, BLUE, GREEN, GREY, PURPLE, VERMILION, legend_below, new_figure, source
+from .common import (BLACK, BLUE, GREEN, GREY, PURPLE, VERMILION, animated, legend_below,
+                     legend_stand_ins, new_figure, source)
 
 ENERGY_TERMS = ("D_x", "D_y", "U_el", "K")
 ENERGY_COLORS = (BLUE, VERMILION, GREEN, PURPLE)
 ENERGY_LABELS = ("D_x (along x)", "D_y (transverse)", "U_el (stored)", "K (kinetic)")
 V_MAX = 2.0
+#: Room on Fig. 3's speed axis below |v_R| = 0 for the whole moving marker, in V_MAX.
+MARKER_ROOM = 0.03
 
 
 def _index(series, i):
@@ -69,12 +72,13 @@ def forces_figure(series, params=None, frame: int = 0, width: int = 340, height:
     fig.line("tau", "F_y", source=src, line_color=VERMILION, line_width=2,
              legend_label="F_f,y")  # over f_N, as the axis says: fits a projected plot
     now = source("forces_now", force_now(series, frame)["forces_now"])
-    fig.scatter("tau", "F", source=now, size=8, fill_color="white", line_color=BLACK)
+    marker = fig.scatter("tau", "F", source=now, size=8, fill_color="white", line_color=BLACK)
     fig.add_layout(Span(location=m0, dimension="width", line_color=GREEN, line_dash="dashed",
                         line_width=2, name="forces_mu0"))
-    fig.add_layout(Span(location=float(now.data["tau"][0]) if now.data["tau"] else 0.0,
-                        dimension="height", line_color=GREY, line_width=1.5,
-                        name="forces_time"))
+    time_line = Span(location=float(now.data["tau"][0]) if now.data["tau"] else 0.0,
+                     dimension="height", line_color=GREY, line_width=1.5, name="forces_time")
+    fig.add_layout(time_line)
+    animated(marker, time_line)
     fig.add_layout(Label(x=48, y=m0, x_units="screen", text=f"μ₀ = {m0:.4f}",
                          name="forces_mu0_label", text_color=GREEN, text_font_size="12px",
                          y_offset=2))
@@ -99,26 +103,32 @@ def friction_now(series, i: int, params=None) -> dict:
 
 
 def friction_law_figure(series=None, params=None, frame: int = 0, width: int = 340,
-                        height: int = 230):
-    """Fig. 3: mu(|v_R|) (|v_R| in V0 = 10 V_s), mu0 = mu(1) and the current |v_R|."""
+                        height: int = 230, marker_room: bool = True):
+    """Fig. 3: mu(|v_R|) (|v_R| in V0 = 10 V_s), mu0 = mu(1) and the current |v_R|.
+
+    ``marker_room``: the |v_R| axis starts a little below 0, so the moving marker, which is
+    not clipped to the plot (``animated``), stays whole inside it while the support sticks."""
     law_data = friction_law_data(params)["friction_law"]
     # Fixed ranges: the marker moves every frame, and a data range would be recomputed
     # (and, in a served page, sent to the server) each time.
     top = 1.08 * float(np.nanmax(law_data["mu"]))
     fig = new_figure("friction_law", "Friction law μ(v) (Fig. 3)", width, height,
                      x_axis_label="|v_R| / V₀  (= v / 10 V_s)", y_axis_label="μ",
-                     x_range=Range1d(0, V_MAX), y_range=Range1d(-0.04 * top, top))
+                     x_range=Range1d(-MARKER_ROOM * V_MAX if marker_room else 0.0, V_MAX),
+                     y_range=Range1d(-0.04 * top, top))
     law = source("friction_law", law_data)
     fig.line("v", "mu", source=law, line_color=BLACK, line_width=2)
     m0 = mu0(params)
     fig.scatter([1.0], [m0], size=8, marker="square", color=GREEN, legend_label="μ₀ = μ(1)")
     now = source("friction_now", friction_now(series, frame, params)["friction_now"])
-    fig.scatter("v", "mu", source=now, size=12, fill_color=VERMILION, line_color=BLACK,
-                legend_label="current |v_R|")
+    marker = fig.scatter("v", "mu", source=now, size=12, fill_color=VERMILION, line_color=BLACK,
+                         legend_label="current |v_R|")
     fig.legend.location = "bottom_right"
     fig.legend.label_text_font_size = "10px"
     fig.legend.padding = 2
     fig.legend.spacing = 0
+    animated(marker)
+    legend_stand_ins(fig)
     return fig
 
 

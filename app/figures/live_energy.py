@@ -18,12 +18,13 @@ from bokeh.models import CustomJS, Range1d
 
 from model.contact.friction import mu
 
-from .common import BLACK, annotation, new_figure, source, sources
+from .common import (BLACK, animated, annotation, legend_stand_ins, new_figure, source,
+                     sources)
 from .live_text import live_div, live_html
 from .histories import ENERGY_COLORS, ENERGY_LABELS, ENERGY_TERMS
 from .player import UI_MS
-from .scene import (ARROW_SCALE, FORCE_COLOR, LABEL_ROOM_X, LABEL_ROOM_Y, SLAB_COLOR, STRIPES,
-                    VREL_COLOR, _extent, view_box)
+from .scene import (ARROW_SCALE, FORCE_COLOR, LABEL_ROOM_X, LABEL_ROOM_Y, SLAB_COLOR,
+                    SLAB_REACH, STRIPES, VREL_COLOR, _extent, view_box)
 
 __all__ = ["energy_frames", "live_energy_figure", "support_frames", "support_frames_callback",
            "ENERGY_KEYS"]
@@ -100,8 +101,9 @@ def live_energy_figure(energies: dict, player, width: int = 420, height: int = 3
                      y_axis_label="energy / (m V₀²)")
     fig.tools = [t for t in fig.tools if type(t).__name__ in ("SaveTool",)]
     bars = source("energy_live_bars", _bars(energies, 0))
-    fig.quad("left", "right", "bottom", "top", source=bars, fill_color="color",
-             line_color=BLACK, legend_field="label")
+    animated(fig.quad("left", "right", "bottom", "top", source=bars, fill_color="color",
+                      line_color=BLACK, legend_field="label"))
+    legend_stand_ins(fig)  # the legend's colours and labels, which never change
     fig.xaxis.ticker = [0.5, 1.5]
     fig.xaxis.major_label_overrides = {0.5: "W so far", 1.5: "its split"}
     fig.xgrid.visible = False
@@ -180,9 +182,11 @@ def support_frames_callback(series, params, n_frames: int, scene=None, forces=No
     new trajectory and the figures follow it, with no new callback. Every change it makes
     stays in the browser (``sync: false``): no message to the server per frame.
     With ``frame`` (the player's ``PlayerFrame``) it also draws the current frame when new
-    data arrive (attach it to the sources' ``data`` as well). ``frames_source``: an existing
-    ``support_frames`` source to fill and read (one that other callbacks, such as the
-    sound's, read too), else a new one.
+    data arrive (attach it to the sources' ``data`` as well) and when Fig. 7 or Fig. 3 is
+    zoomed (it is attached to their ranges here): their markers are drawn only inside the
+    plots' ranges, as they are not clipped (``app.figures.common.animated``).
+    ``frames_source``: an existing ``support_frames`` source to fill and read (one that
+    other callbacks, such as the sound's, read too), else a new one.
     """
     data = support_frames_data(series, params, n_frames)
     if frames_source is not None:
@@ -191,21 +195,32 @@ def support_frames_callback(series, params, n_frames: int, scene=None, forces=No
     for fig in (scene, forces, law):
         if fig is not None:
             named.update(sources(fig))
+    # Fig. 7's and Fig. 3's x and y ranges: their markers are drawn only inside them.
+    ranges = [r for fig in (forces, law)
+              for r in ((fig.x_range, fig.y_range) if fig is not None else (None, None))]
     args = dict(
         data=(frames_source if frames_source is not None
               else source("support_frames", data["support_frames"])),
         fp=source("support_frame_params", data["support_frame_params"]),
-        stripes_n=STRIPES, arrow_scale=ARROW_SCALE, room=[LABEL_ROOM_X, LABEL_ROOM_Y],
+        stripes_n=STRIPES, reach=SLAB_REACH, arrow_scale=ARROW_SCALE,
+        room=[LABEL_ROOM_X, LABEL_ROOM_Y],
         colors=[SLAB_COLOR, VREL_COLOR, FORCE_COLOR],
         **{key: named.get(name) for key, name in (
             ("mass", "scene_mass"), ("spring", "scene_spring"), ("twist", "scene_twist"),
             ("slab", "scene_slab"), ("stripes", "scene_stripes"), ("edges", "scene_edges"),
             ("arrows", "scene_arrows"), ("arrow_labels", "scene_arrow_labels"),
             ("forces_now", "forces_now"), ("friction_now", "friction_now"))},
+        ranges=ranges,
         time_line=annotation(forces, "forces_time") if forces is not None else None,
         time_label=annotation(scene, "scene_time") if scene is not None else None,
         frame=frame)
-    return CustomJS(args=args, code=_SUPPORT_JS)
+    callback = CustomJS(args=args, code=_SUPPORT_JS)
+    if frame is not None:  # a zoomed plot: its markers drawn again, inside or not
+        for r in ranges:
+            if r is not None:
+                r.js_on_change("start", callback)
+                r.js_on_change("end", callback)
+    return callback
 
 
 # The same drawing as app.figures.scene.scene_frame (zigzag spring, twist spiral, slab,
@@ -242,7 +257,7 @@ if (twist) {
   quiet(twist, {data: {x: tx, y: ty}});
 }
 const left = x_start - L0 + tau, right = x_start + tau;
-if (slab) quiet(slab, {data: {left: [left], right: [right], bottom: slab.data.bottom, top: slab.data.top}});
+if (slab) quiet(slab, {data: {y: [-reach, reach], left: [left, left], right: [right, right]}});
 if (stripes) {
   const spacing = (vx1 - vx0) / stripes_n;
   const first = left < vx0 ? left + Math.ceil((vx0 - left) / spacing) * spacing : left;
@@ -275,8 +290,21 @@ if (arrows) {
                               align: lx.map((v, k) => (v >= keep[k][0] ? v < vx1 - rx : v < vx0 + rx) ? "left" : "right"),
                               baseline: ly.map((v, k) => (keep[k][4] === colors[0] ? v < vy1 - ry : v < vy0 + ry) ? "bottom" : "top")}});
 }
-quiet(forces_now, {data: {tau: [tau, tau, tau], F: [d.F_x[i], d.F_y[i], d.F_abs[i]]}});
-quiet(friction_now, {data: {v: [d.v_R[i]], mu: [d.mu[i]]}});
+// The markers are not clipped to their plots (app.figures.common.animated): only those
+// inside the plot's ranges are drawn (a zoomed plot).
+const inside = (r, v) => !r || (v >= Math.min(r.start, r.end) && v <= Math.max(r.start, r.end));
+const shown = (xr, yr, xs, ys) => {
+  const keep = xs.map((x, k) => inside(xr, x) && inside(yr, ys[k]));
+  return [xs.filter((_, k) => keep[k]), ys.filter((_, k) => keep[k])];
+};
+if (forces_now) {
+  const [ts, Fs] = shown(ranges[0], ranges[1], [tau, tau, tau], [d.F_x[i], d.F_y[i], d.F_abs[i]]);
+  quiet(forces_now, {data: {tau: ts, F: Fs}});
+}
+if (friction_now) {
+  const [vs, mus] = shown(ranges[2], ranges[3], [d.v_R[i]], [d.mu[i]]);
+  quiet(friction_now, {data: {v: vs, mu: mus}});
+}
 quiet(time_line, {location: tau});
 quiet(time_label, {text: `τ = ${tau.toPrecision(3)} of τ_out = ${tau_out.toPrecision(4)}`});
 """

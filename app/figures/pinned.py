@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from bokeh.models import Legend, LegendItem
+from bokeh.models import GlyphRenderer, Legend, LegendItem
 
 from .common import BLUE, GREY, VERMILION, source
 from .design import density_data
@@ -84,7 +84,8 @@ def add_pinned(fig, kind: str, b_source: str, key: str = "") -> list:
     """Add A's glyphs of ``kind`` (scene, forces, polar, load) to ``fig`` and the A/B
     legend (B's glyph in it: the first drawn from the source ``b_source``); returns A's
     renderers, hidden."""
-    b_renderer = next(r for r in fig.renderers if r.data_source.name == b_source)
+    b_renderer = next(r for r in fig.renderers
+                      if isinstance(r, GlyphRenderer) and r.data_source.name == b_source)
     if kind == "scene":
         data = orbit_A(None, None)
         src = {n: source(n, d) for n, d in data.items()}

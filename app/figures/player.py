@@ -24,7 +24,9 @@ input, select or text area has the focus; Space and Enter on a focused button pr
 button. L, a letter, acts only while one of the player's own controls has the focus
 (``CONTROL_CLASS``): typed elsewhere (speech input, a screen reader's keys) it does
 nothing (WCAG 2.1.4). Autoplay is skipped when the reader asked for less motion
-(``prefers-reduced-motion: reduce``); Play still starts the player.
+(``prefers-reduced-motion: reduce``); Play still starts the player. Hidden -- its tab
+left, or the browser's tab in the background -- a playing player pauses (within ``UI_MS``):
+no frame is drawn unseen and its sound stops with it.
 
 Sound (``app.figures.sound.add_sound``, off by default) adds a toggle to the player's row
 and plays each frame as a tone: pitch from the support's speed on the slab |v_R| (220-880
@@ -83,7 +85,33 @@ if (st === undefined) {
   // Frames shown; the timer keeps its fractional position, a step or a jump does not.
   st.show = (f, force) => { if (frame.value !== f) { frame.setv({value: f}, {sync: false}); st.drawn += 1; } st.ui(force); };
   st.set = (f) => { st.pos = f; st.show(f, true); };
+  // Hidden -- its tab left, its page in the background -- the player pauses: no frame is
+  // drawn unseen and no tone sounds on (app.figures.sound). Its play button's element
+  // (found once by its data-player) is checked at most every ui_ms while playing.
+  st.el = null;
+  st.seen_t = 0;
+  st.shown = () => {
+    if (document.hidden) return false;
+    if (st.el === null || !st.el.isConnected) {
+      const find = (root) => {
+        const el = root.querySelector(`[data-player="${frame.id}"]`);
+        if (el) return el;
+        for (const host of root.querySelectorAll("*"))
+          if (host.shadowRoot) { const found = find(host.shadowRoot); if (found) return found; }
+        return null;
+      };
+      st.el = find(document);
+      if (st.el === null) return true;  // not drawn yet
+    }
+    // Not drawn (display: none) or hidden (an inactive tab is visibility: hidden).
+    return st.el.getClientRects().length > 0 && getComputedStyle(st.el).visibility !== "hidden";
+  };
+  st.pause = () => { if (play.active) play.active = false; };
   st.tick = (now) => {
+    if (now - st.seen_t >= ui_ms) {
+      st.seen_t = now;
+      if (!st.shown()) { st.raf = null; st.pause(); return; }
+    }
     st.ticks += 1;
     if (st.last === null) st.last = now;
     st.pos += (now - st.last) / 1000 * fps * st.speed();
@@ -140,6 +168,9 @@ if (st === undefined) {
 }
 if (!window.__mpf_keys) {
   window.__mpf_keys = true;
+  document.addEventListener("visibilitychange", () => {
+    if (document.hidden) for (const p of Object.values(window.__mpf_players)) p.pause();
+  });
   document.addEventListener("keydown", (e) => {
     const p = window.__mpf_players[window.__mpf_active];
     if (p) p.key(e);
@@ -250,9 +281,9 @@ def browser_player(n_frames: int, times=None, fps: float = 30.0, autoplay: bool 
                    show_value=False, width=max(200, width - 260), name=f"{name}_slider",
                    css_classes=[CONTROL_CLASS], height=44, margin=(4, 10, 4, 10))
     play = Toggle(label=PLAY, active=False, button_type="success", width=120, name=f"{name}_play",
-                  css_classes=[CONTROL_CLASS],
-                  html_attributes={"title": "Play or pause (Space)"}, stylesheets=[PLAY_CSS],
-                  **big)
+                  css_classes=[CONTROL_CLASS], stylesheets=[PLAY_CSS], **big)
+    # The page finds the player's element by it (hidden, the player pauses).
+    play.html_attributes = {"title": "Play or pause (Space)", "data-player": frame.id}
     back = Button(label="◀ Step", width=96, name=f"{name}_back", css_classes=[CONTROL_CLASS],
                   html_attributes={"title": "One frame back (←)"},
                   **big)

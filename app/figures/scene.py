@@ -17,11 +17,13 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from bokeh.models import (Arrow, ColorBar, Label, LabelSet, LinearColorMapper, Range1d,
+from bokeh.models import (Arrow, Band, ColorBar, Label, LabelSet, LinearColorMapper, Range1d,
                           VeeHead)
 from bokeh.palettes import Viridis256
 
-from .common import BLACK, BLUE, GREY, ORANGE, SKY, VERMILION, legend_below, new_figure, source
+from .common import (BLACK, annotation, BLUE, GREY, ORANGE, SKY, VERMILION, animated,
+                     legend_below,
+                     legend_stand_ins, new_figure, pass_on_visible, source)
 
 SLAB_REACH = 1e6  # the slab's extent across the plot (it is wider than any orbit)
 #: Beyond this ratio of the path's width to height, the axes are not to scale.
@@ -107,7 +109,7 @@ def _zigzag(x: float, y: float, amplitude: float, coils: int = 7):
 _EMPTY_FRAME = {
     "scene_mass": {"x": [], "y": [], "tau": []}, "scene_spring": {"x": [], "y": []},
     "scene_twist": {"x": [], "y": []},
-    "scene_slab": {"left": [], "right": [], "bottom": [], "top": []},
+    "scene_slab": {"y": [], "left": [], "right": []},
     "scene_stripes": {"xs": [], "ys": []},
     "scene_edges": {"x": [], "y": [], "text": [], "align": []},
     "scene_arrows": {"x0": [], "y0": [], "x1": [], "y1": [], "color": []},
@@ -139,8 +141,8 @@ def scene_frame(series, params, i: int) -> dict:
         "scene_mass": {"x": [x], "y": [y], "tau": [tau]},
         "scene_spring": {"x": sx, "y": sy},
         "scene_twist": {"x": rho * np.cos(phi), "y": rho * np.sin(phi)},
-        "scene_slab": {"left": [left], "right": [right], "bottom": [-SLAB_REACH],
-                       "top": [SLAB_REACH]},
+        "scene_slab": {"y": [-SLAB_REACH, SLAB_REACH], "left": [left, left],
+                       "right": [right, right]},
         "scene_stripes": _stripes(left, right, vx0, vx1, vy0, vy1),
         "scene_edges": _edges(left, right, vx0, vx1, vy0, vy1),
         **_arrows(series, i, vx0, vx1, vy0, vy1),
@@ -235,9 +237,16 @@ def scene_figure(series, params, frame: int = 0, width: int = 340, height: int =
                      x_axis_label="x / r₀  (slab slides along +x)", y_axis_label="y / r₀",
                      tools="save")
     src = {name: source(name, cols) for name, cols in data.items()}
-    slab = fig.quad("left", "right", "bottom", "top", source=src["scene_slab"],
-                    fill_color=SKY, fill_alpha=0.15, line_color=SKY, line_width=3,
-                    legend_label="slab")
+    # The slab: a band between its trailing and leading edges across the whole plot
+    # (clipped to the plot area as a moving glyph would not be: ``animated``); the legend
+    # shows it as a box.
+    slab = Band(base="y", lower="left", upper="right", dimension="width",
+                source=src["scene_slab"], fill_color=SKY, fill_alpha=0.15, line_color=SKY,
+                line_width=3, name="scene_slab")
+    fig.renderers.insert(0, slab)  # below everything that moves
+    slab_key = fig.quad([math.nan], [math.nan], [math.nan], [math.nan], fill_color=SKY,
+                        fill_alpha=0.15, line_color=SKY, line_width=3, legend_label="slab")
+    pass_on_visible(slab_key, slab)  # the legend hides the band
     stripes = fig.multi_line("xs", "ys", source=src["scene_stripes"], line_color=SKY,
                              line_width=1.5, line_alpha=0.55)
     circle = fig.line("x", "y", source=src["scene_circle"], line_color=GREY, line_dash="dotted",
@@ -247,14 +256,14 @@ def scene_figure(series, params, frame: int = 0, width: int = 340, height: int =
     mapper = LinearColorMapper(palette=Viridis256, low=0.0, high=1.0)
     fig.segment("x0", "y0", "x1", "y1", source=src["orbit"], line_width=2.5,
                 line_color={"field": "t", "transform": mapper})
-    fig.line("x", "y", source=src["scene_twist"], line_color=ORANGE, line_width=2,
-             legend_label="twist")
-    fig.line("x", "y", source=src["scene_spring"], line_color=BLACK, line_width=1.5,
-             legend_label="spring")
+    twist = fig.line("x", "y", source=src["scene_twist"], line_color=ORANGE, line_width=2,
+                     legend_label="twist")
+    spring = fig.line("x", "y", source=src["scene_spring"], line_color=BLACK, line_width=1.5,
+                      legend_label="spring")
     fig.scatter("x", "y", source=src["scene_points"], marker="marker", size=9,
                 fill_color="white", line_color=BLACK, line_width=2)
-    fig.scatter("x", "y", source=src["scene_mass"], size=13, fill_color=VERMILION,
-                line_color=BLACK, line_width=1.5, legend_label="mass")
+    mass = fig.scatter("x", "y", source=src["scene_mass"], size=13, fill_color=VERMILION,
+                       line_color=BLACK, line_width=1.5, legend_label="mass")
     # Fixed ranges around the path (to scale, or each axis fitted): set anew with each
     # trajectory, never recomputed while the mass moves.
     x0, x1, y0, y1, _ = view_box(series, params)
@@ -281,5 +290,10 @@ def scene_figure(series, params, frame: int = 0, width: int = 340, height: int =
                          text=time_text(series, frame), text_font_size="12px",
                          background_fill_color="white", background_fill_alpha=0.8))
     legend_below(fig, spacing=4)
-    slab.level = stripes.level = "underlay"
+    # Drawn anew every frame, over the still path, pivot and rest line (a top view looks
+    # through the slab); the legend names still stand-ins.
+    animated(slab, stripes, twist, spring, mass,
+             *(annotation(fig, n) for n in ("scene_arrows", "scene_arrow_labels",
+                                            "scene_edges", "scene_time")))
+    legend_stand_ins(fig)
     return fig

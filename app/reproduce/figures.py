@@ -23,11 +23,20 @@ def _titled(fig, title: str):
 
 def _drop_empty_legend_items(fig):
     """Remove legend entries whose glyphs have no data (e.g. the dashboard's 'current'
-    markers, which a static figure does not have)."""
+    markers, which a static figure does not have: their legend names a stand-in with
+    NaN data, ``app.figures.common.stand_in``)."""
+    def drawn(r):
+        if not isinstance(r, GlyphRenderer):
+            return False
+        for column in r.data_source.data.values():
+            try:
+                if np.isfinite(np.asarray(column, dtype=float)).any():
+                    return True
+            except (TypeError, ValueError):  # text
+                continue
+        return False
     for legend in fig.legend:
-        legend.items = [item for item in legend.items
-                        if any(isinstance(r, GlyphRenderer) and len(next(iter(
-                            r.data_source.data.values()), [])) for r in item.renderers)]
+        legend.items = [item for item in legend.items if any(drawn(r) for r in item.renderers)]
     return fig
 
 
@@ -85,7 +94,8 @@ def _polar(number: str):
 
 
 DRAW = {
-    "fig3": lambda d: _drop_empty_legend_items(F.friction_law_figure(width=560, height=380)),
+    "fig3": lambda d: _drop_empty_legend_items(
+        F.friction_law_figure(width=560, height=380, marker_room=False)),
     "fig5a": lambda d: F.regime_map_figure(d.regime_map, "5a"),
     "fig5b": lambda d: F.regime_map_figure(d.regime_map, "5b"),
     "fig6": lambda d: _drop_empty_legend_items(F.load_figure(_load_curves(d))),

@@ -120,7 +120,8 @@ class PageAccess(JSComponent):
       const sheet = new CSSStyleSheet();
       sheet.replaceSync(model.css);
       document.adoptedStyleSheets = [...document.adoptedStyleSheets, sheet];
-      const stop = watchRoots((root) => tend(root, sheet), describe);
+      // A live description's new text describes figures elsewhere: the page is walked.
+      const stop = watchRoots((root) => tend(root, sheet), describe, ".live-description");
       model.on("remove", stop);
     }
     """

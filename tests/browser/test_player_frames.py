@@ -150,3 +150,68 @@ def test_the_support_player_changes_nothing_outside_its_tab(page, page_log, app_
     page.wait_for_timeout(300)
     assert f"frame {frame + 2} / {n}" in _model(page, "support_player_readout", "html")
     assert page_log.errors == [], page_log.errors
+
+
+# Counts, while the player plays, how often each canvas layer of each figure is cleared
+# (BokehJS clears a layer to repaint it) and how many elements the legends get anew.
+_LAYERS_JS = """async ([player, ms]) => {
+  const clears = new Map(), C = CanvasRenderingContext2D.prototype, clear = C.clearRect;
+  C.clearRect = function (...a) { clears.set(this.canvas, (clears.get(this.canvas) || 0) + 1);
+                                  return clear.apply(this, a); };
+  let legends = 0;
+  const observer = new MutationObserver((list) => { for (const r of list)
+    if ([...r.addedNodes].some((n) => n.nodeType === 1)) legends += 1; });
+  const visit = (root) => { for (const el of root.querySelectorAll("*")) if (el.shadowRoot) {
+    if (el.classList.contains("bk-Legend")) observer.observe(el.shadowRoot, {childList: true, subtree: true});
+    visit(el.shadowRoot); } };
+  visit(document);
+  let frame = null, frames = 0;
+  for (const d of Bokeh.documents) for (const m of d.all_models)
+    if (m.name === player + "_frame") frame = m;
+  frame.connect(frame.properties.value.change, () => frames++);
+  await new Promise((r) => setTimeout(r, ms));
+  C.clearRect = clear;
+  observer.disconnect();
+  const out = {frames, legends, layers: {}};
+  for (const [canvas, n] of clears) {
+    let host = canvas, figure = null;
+    while (figure === null) {
+      const root = host.getRootNode();
+      if (!root || !root.host) break;
+      host = root.host;
+      figure = [...host.classList].find((c) => c.startsWith("figure-")) || null;
+    }
+    // A plot's canvas layers: [0] the still drawing, [1] the overlay (what moves).
+    const layer = [...canvas.getRootNode().querySelectorAll("canvas.bk-layer:not(.bk-glyph)")]
+      .indexOf(canvas);
+    const key = `${figure}:${layer}`;
+    out.layers[key] = (out.layers[key] || 0) + n;
+  }
+  return out;
+}"""
+
+
+def test_a_playing_support_repaints_only_what_moves(page, page_log, app_url):
+    """Per frame, each figure repaints its moving layer only: the axes, grid, legends and
+    still curves are not drawn again, and no legend is built anew."""
+    _open(page, app_url, "support", "support_player")
+    pt.wait_for(page, lambda: len((pt.read_source(page, "support_frames") or {}).get("tau", []))
+                > 0, timeout_s=120, what="the player's frames")
+    _quiet(page)
+    _set_play(page, "support_player", True)
+    page.get_by_role("button", name="‖ Pause").first.wait_for(timeout=30_000)
+    page.wait_for_timeout(500)
+    figures = ("figure-scene", "figure-forces", "figure-friction_law", "figure-energy_live_layout")
+    for _ in range(5):  # a window in which the server sent the page nothing
+        received = len(page.__mp_received)
+        seen = page.evaluate(_LAYERS_JS, ["support_player", 3000])
+        if len(page.__mp_received) == received:
+            break
+    _set_play(page, "support_player", False)
+    assert seen["frames"] >= 10, seen
+    for fig in figures:
+        assert seen["layers"].get(f"{fig}:1", 0) >= 3, f"{fig}'s moving layer was not drawn: {seen}"
+        assert seen["layers"].get(f"{fig}:0", 0) == 0, \
+            f"{fig}'s still drawing was repainted while the player played: {seen}"
+    assert seen["legends"] == 0, f"legends built anew while the player played: {seen}"
+    assert page_log.errors == [], page_log.errors

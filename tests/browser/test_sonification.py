@@ -4,7 +4,9 @@
   exists before the reader clicks it;
 * clicked, then played: the tone runs, its pitch and pan change with the frames and are
   the ones the mapping gives for the trajectory the page shows (soft regime: stick-slip);
-* paused it is silent; switched off the oscillator stops and the context is closed.
+* paused it is silent; switched off the oscillator stops and the context is closed;
+* the reader leaves the tab (or the browser's tab goes to the background): the player
+  pauses and the tone stops, not sounding on over another tab.
 """
 from __future__ import annotations
 
@@ -150,4 +152,61 @@ def test_the_toggle_says_whether_the_sound_is_on_however_it_changed(page, page_l
     pt.wait_for(page, lambda: pressed() == "true", what=lambda: f"aria-pressed: {pressed()}")
     page.keyboard.press("Space")
     pt.wait_for(page, lambda: pressed() == "false", what=lambda: f"aria-pressed: {pressed()}")
+    assert not page_log.errors, page_log.dump()
+
+
+def _playing(page) -> bool:
+    return page.evaluate("""() => [...Bokeh.documents[0].all_models].find(
+        (m) => m.name === "support_player_play").active""")
+
+
+def _frame(page) -> int:
+    return _sound(page)["player_frame"]
+
+
+def _sounding_then(page, leave, come_back) -> None:
+    """Play with the sound on, ``leave``: the player pauses, the tone fades out and the
+    frames stop; ``come_back``: still paused until Play is pressed, then it sounds again."""
+    pt.click_button(page, "Play")
+    pt.wait_for(page, lambda: _sound(page)["running"] and _sound(page)["gain"] > 0,
+                what=lambda: f"the tone while playing: {_sound(page)}")
+    leave()
+    pt.wait_for(page, lambda: not _playing(page), timeout_s=5,
+                what="the player to pause once its tab is hidden")
+    pt.wait_for(page, lambda: not _sound(page)["running"] and _sound(page)["gain"] < 1e-3,
+                timeout_s=5, what=lambda: f"silence once the tab is hidden: {_sound(page)}")
+    stopped = _frame(page)
+    page.wait_for_timeout(600)
+    assert _frame(page) == stopped, "frames drawn on a hidden tab"
+    come_back()
+    page.wait_for_timeout(600)
+    assert not _playing(page) and not _sound(page)["running"]
+    pt.click_button(page, "Play")
+    pt.wait_for(page, lambda: _sound(page)["running"], what="the tone again after Play")
+    pt.click_button(page, "Pause")
+
+
+_HIDE_PAGE = """(hidden) => {
+  Object.defineProperty(document, "hidden", {value: hidden, configurable: true});
+  Object.defineProperty(document, "visibilityState",
+                        {value: hidden ? "hidden" : "visible", configurable: true});
+  document.dispatchEvent(new Event("visibilitychange"));
+}"""
+
+
+def test_leaving_the_tab_pauses_the_player_and_silences_it(page, page_log, app_url):
+    pt.wait_for_app(page, f"{app_url}?regime=soft")
+    pt.wait_for(page, lambda: len((pt.read_source(page, "support_frames") or {}).get("v_R", []))
+                == 300, timeout_s=120, what="the player's frames")
+    toggle = page.get_by_role("button", name=SOUND_NAME)
+    pt.wait_for(page, lambda: toggle.count() == 1, what=f"a button named {SOUND_NAME!r}")
+    toggle.click()
+    pt.wait_for(page, lambda: _sound(page) is not None and _sound(page)["context"] == "running",
+                what=lambda: f"the audio context to run: {_sound(page)}")
+    # Another tab of the dashboard, and back.
+    _sounding_then(page, lambda: pt.open_tab(page, "^Array"),
+                   lambda: pt.open_tab(page, "^One support"))
+    # The browser's tab in the background, and back.
+    _sounding_then(page, lambda: page.evaluate(_HIDE_PAGE, True),
+                   lambda: page.evaluate(_HIDE_PAGE, False))
     assert not page_log.errors, page_log.dump()
