@@ -69,8 +69,15 @@ BROWSER_DIR = Path(__file__).parent / "browser"
 
 @pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items):
-    """Group each test with its module, the browser tests all together (``--dist loadgroup``)."""
+    """Group each test with its module, the browser tests all together (``--dist loadgroup``);
+    mark ``slow`` the tests listed in ``tests/slow_tests.txt`` (``tests/tiers.py``), before
+    ``-m`` selects."""
+    from tiers import LIST, read
+
+    slow = read(LIST)
     for item in items:
         path = Path(str(item.fspath))
         group = "browser" if BROWSER_DIR in path.parents else path.stem
         item.add_marker(pytest.mark.xdist_group(group))
+        if item.nodeid.split("@", 1)[0] in slow:
+            item.add_marker(pytest.mark.slow)

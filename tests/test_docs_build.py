@@ -39,6 +39,7 @@ def built(tmp_path_factory):
     return base
 
 
+@pytest.mark.slow  # the module's site build (~15 s, built once)
 def test_the_site_builds_with_warnings_as_errors(built):
     html = built / "html"
     pages = {p.stem for p in html.glob("*.html")}
@@ -49,6 +50,7 @@ def test_the_site_builds_with_warnings_as_errors(built):
         assert f'href="{page}.html"' in index
 
 
+@pytest.mark.slow  # the module's site build (~15 s, built once)
 def test_the_api_reference_documents_the_public_api(built):
     generated = built / "html" / "generated"
     missing = [name for name in model.__all__ if not (generated / f"model.{name}.html").exists()]
@@ -62,6 +64,7 @@ def test_every_public_function_has_examples():
     assert not without, f"public functions whose docstring has no example: {without}"
 
 
+@pytest.mark.slow  # the module's site build (~15 s, built once)
 def test_the_api_reference_examples_run(built):
     out = _sphinx("doctest", built / "doctest", built / "doctrees")
     report = (built / "doctest" / "output.txt").read_text(encoding="utf-8")

@@ -37,6 +37,7 @@ def coarse(tmp_path_factory):
     return rep, stages
 
 
+@pytest.mark.slow  # the module's coarse reproduction (~40 s, built once)
 def test_every_paper_figure_is_regenerated(coarse):
     rep, _ = coarse
     assert {f.spec.number for f in rep.figures} == PAPER_FIGURES
@@ -49,6 +50,7 @@ def test_every_paper_figure_is_regenerated(coarse):
             assert f.png.stat().st_size > 5_000
 
 
+@pytest.mark.slow  # the module's coarse reproduction (~40 s, built once)
 def test_pngs_are_made_when_a_browser_is_available(coarse):
     rep, _ = coarse
     if browser_problem() is None:
@@ -57,6 +59,7 @@ def test_pngs_are_made_when_a_browser_is_available(coarse):
         assert rep.png_note == browser_problem()
 
 
+@pytest.mark.slow  # the module's coarse reproduction (~40 s, built once)
 def test_csvs_carry_their_parameters_and_read_back(coarse):
     rep, _ = coarse
     for f in rep.figures:
@@ -71,6 +74,7 @@ def test_csvs_carry_their_parameters_and_read_back(coarse):
     assert fig6.settings["beta"] == "self" and fig6.settings["tol"] == 1e-2
 
 
+@pytest.mark.slow  # the module's coarse reproduction (~40 s, built once)
 def test_report_lists_every_finding_with_a_verdict(coarse):
     rep, _ = coarse
     text = rep.report.read_text(encoding="utf-8")
@@ -85,6 +89,7 @@ def test_report_lists_every_finding_with_a_verdict(coarse):
     assert "## Sensitivity" in text and "200 random supports" in text
 
 
+@pytest.mark.slow  # the module's coarse reproduction (~40 s, built once)
 def test_index_links_every_figure(coarse):
     rep, _ = coarse
     page = rep.index.read_text(encoding="utf-8")
@@ -93,6 +98,7 @@ def test_index_links_every_figure(coarse):
     assert page.count("<tr class=") == len(rep.checks)
 
 
+@pytest.mark.slow  # the module's coarse reproduction (~40 s, built once)
 def test_checks_use_the_computed_numbers(coarse):
     rep, _ = coarse
     by_quantity = {c.quantity: c for c in rep.checks}
@@ -103,6 +109,7 @@ def test_checks_use_the_computed_numbers(coarse):
     assert not mu.agrees  # 1.00824, not the quoted 1.0085
 
 
+@pytest.mark.slow  # the module's coarse reproduction (~40 s, built once)
 def test_sensitivity_variants(coarse):
     rep, _ = coarse
     names = [v.name for v in rep.variants]
@@ -114,6 +121,7 @@ def test_sensitivity_variants(coarse):
         assert math.isfinite(base.DyDx[regime])
 
 
+@pytest.mark.slow  # the module's coarse reproduction (~40 s, built once)
 def test_progress_covers_every_stage(coarse):
     rep, stages = coarse
     from model.reproduce import all_stages
@@ -124,6 +132,7 @@ def test_progress_covers_every_stage(coarse):
         assert any(s == name and d == t for s, d, t in stages)
 
 
+@pytest.mark.slow  # the module's coarse reproduction (~40 s, built once)
 def test_a_second_run_reads_the_cache_and_needs_no_drawing(coarse, tmp_path):
     rep, _ = coarse
     again = compute_only(tmp_path, resolution="coarse")
@@ -209,6 +218,7 @@ def _pdf_title(data: bytes) -> str:
     return found.group("lit").decode("latin-1")
 
 
+@pytest.mark.slow  # the module's coarse reproduction (~40 s, built once)
 def test_every_figure_as_svg_and_pdf(vector):
     rep, out, files, note = vector
     assert note == ""
@@ -220,6 +230,7 @@ def test_every_figure_as_svg_and_pdf(vector):
 
 
 @pytest.mark.parametrize("key", sorted(DRAW))
+@pytest.mark.slow  # the module's coarse reproduction (~40 s, built once)
 def test_svg_parses_and_holds_the_figure(vector, key):
     rep, out, files, _ = vector
     root = ET.parse(files[key][2]).getroot()
@@ -246,6 +257,7 @@ def test_svg_parses_and_holds_the_figure(vector, key):
 
 
 @pytest.mark.parametrize("key", ["fig3", "fig5a", "fig11a"])
+@pytest.mark.slow  # the module's coarse reproduction (~40 s, built once)
 def test_pdf_is_one_vector_page_the_size_of_the_svg(vector, key):
     _, _, files, _ = vector
     data = files[key][3].read_bytes()
@@ -260,6 +272,7 @@ def test_pdf_is_one_vector_page_the_size_of_the_svg(vector, key):
     assert version_text() in _pdf_title(data)
 
 
+@pytest.mark.slow  # the module's coarse reproduction (~40 s, built once)
 def test_the_version_is_in_every_exported_file(coarse):
     rep, _ = coarse
     from PIL import Image
