@@ -191,7 +191,7 @@ def test_the_distribution_editor_redraws_the_density_and_the_readouts(page, page
     page.locator(".design-histogram-file input[type=file]").first.set_input_files(str(good))
     pt.wait_for(page, lambda: 120.0 <= _density_peak(page)[0] <= 150.0, timeout_s=30.0,
                 what="the uploaded histogram's density between 120 and 150 deg")
-    _wait_readout(page, lambda x: x != pair, "the histogram's readouts")
+    first_histogram = _wait_readout(page, lambda x: x != pair, "the histogram's readouts")
     note = " ".join(page.locator(".design-histogram p").all_inner_texts())
     assert "3 bins from 0° to 360°" in note and "Not in the link" in note  # unequal bins
 
@@ -204,7 +204,9 @@ def test_the_distribution_editor_redraws_the_density_and_the_readouts(page, page
                 what="the second histogram's density peaking in its heavy bin")
     pt.wait_for(page, lambda: "hist=0:10:" in page.url, timeout_s=10.0,
                 what="the histogram in the link")
-    shown = _wait_readout(page, lambda x: True, "the second histogram's readouts")
+    # The density is redrawn before the array is computed: wait for the second histogram's
+    # own readouts, not the first one's still on screen.
+    shown = _wait_readout(page, lambda x: x != first_histogram, "the second histogram's readouts")
 
     bad = tmp_path / "bad.csv"
     bad.write_text("theta0_deg,weight\n10,1\n20,-3\n")
