@@ -3,7 +3,8 @@
 Every figure function builds a complete figure from plain data; its data sources carry
 ``name``s so a view can later replace their ``.data`` in place (no new figure, so zoom and
 axes are kept and nothing flickers; a source whose data did not change is not sent again)
-and browser tests can find them in ``Bokeh.documents[0]``. ``style`` switches a figure between screen and projector mode.
+and browser tests can find them in ``Bokeh.documents[0]``. ``style`` switches a figure
+between screen and projector mode.
 """
 from __future__ import annotations
 
