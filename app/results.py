@@ -196,7 +196,7 @@ class SessionResults(PinnedResults, LawResults, SpeedResults):
         if p is None:
             self._clear_design("design_polar")
             return None
-        p, s = worker.sweep_params(p), self.state
+        s = self.state
         return Request("background", ("polar", p, s.array_beta, 1e-6), worker.compute_polar,
                        (p, s.array_beta, 1e-6), self.BUDGET_S["design_polar"])
 
@@ -204,7 +204,6 @@ class SessionResults(PinnedResults, LawResults, SpeedResults):
         p = self._design_params()
         if p is None:
             return None
-        p = worker.sweep_params(p)
         s = self.state
         args = (p, optimum_family(s), s.array_beta, s.opt_objective, s.opt_bound)
         return Request("background", ("design_optimum", *args),
@@ -271,7 +270,7 @@ class SessionResults(PinnedResults, LawResults, SpeedResults):
 
     def _polar_request(self) -> Request:
         s = self.state
-        p = worker.sweep_params(s.params)
+        p = s.support
         return Request("background", ("polar", p, s.array_beta, s.rtol), worker.compute_polar,
                        (p, s.array_beta, s.rtol), self.BUDGET_S["polar"])
 

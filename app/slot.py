@@ -82,7 +82,7 @@ class Slot:
     def invalidate(self, *_events) -> None:
         self.stale = True
         if not self.needed:
-            self.cancel()
+            self._drop()
         elif self._open:
             self.request()
 
@@ -105,11 +105,11 @@ class Slot:
         try:
             req = self._make()
         except ValueError as exc:
-            self.generation += 1
-            self._pending = None
+            self._drop()
             self._fail(f"Invalid parameters: {exc}")
             return
-        if req is None:
+        if req is None:  # nothing to compute now (e.g. an unusable design): drop the older
+            self._drop()
             return
         doc = _session_doc()
         if doc is None:
@@ -134,6 +134,13 @@ class Slot:
         """Forget the waiting request and ignore the result of the running one."""
         self.generation += 1
         self._pending = None
+
+    def _drop(self) -> None:
+        """``cancel``, and clear the busy marker a delayed request set (a running job
+        clears its own when it ends)."""
+        self.cancel()
+        if not self._running:
+            self.owner._set_busy(self.name, False)
 
     def close(self, *_session_context) -> None:
         """The session ended: drop the waiting request, cancel a queued job, start nothing
@@ -164,6 +171,8 @@ class Slot:
         self._bind(doc)
         self.generation += 1
         generation = self.generation
+        # The result on show is stale from now on, not from when the delay is over.
+        self.owner._set_busy(self.name, True)
 
         def later():
             if generation == self.generation and not self.closed:

@@ -54,7 +54,7 @@ def _support_block(state, tag: str, who: str) -> str:
     # Degrees as on the slider; math.radians is how ExplorerState converts them.
     params = params_source(p, theta0=f"math.radians({source(float(state.theta0))})")
     # A uniform array covers every theta0 and takes its load factor as an argument.
-    springs = params_source(p.replace(theta0=math.pi / 2, beta=1.0))
+    springs = params_source(state.support)
     t, w = tag, who
     return f'''\
 params{t} = {params}

@@ -29,7 +29,7 @@ IMPORTS = {
 
 
 def _springs(state) -> str:
-    return params_source(state.params.replace(theta0=math.pi / 2, beta=1.0))
+    return params_source(state.support)
 
 
 def polar_block(state) -> str:

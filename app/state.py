@@ -233,15 +233,24 @@ class ExplorerState(param.Parameterized):
 
     # ------------------------------------------------------------------ model inputs
     @property
-    def params(self) -> Params:
-        """The ``model.Params`` of the current controls (theta0 in radians).
+    def support(self) -> Params:
+        """The support and its load (k_r, k_theta, F_N): what the array functions take.
 
-        ``beta`` is the fixed load factor in the fixed mode; in the self-consistent mode it
-        is 1 here and the array functions solve it (``array_beta`` is then ``"self"``).
+        An array covers its own orientations (a sweep's theta0 values, the uniform
+        array's circle) and takes its load factor as its ``beta`` argument
+        (``array_beta``), so neither is set here.
         """
-        beta = self.beta if self.beta_mode == "fixed" else 1.0
-        return Params(k_r=self.k_r, k_theta=self.k_theta, F_N=self.F_N,
-                      theta0=math.radians(self.theta0), beta=beta)
+        return Params(k_r=self.k_r, k_theta=self.k_theta, F_N=self.F_N)
+
+    @property
+    def params(self) -> Params:
+        """One support at the slider's rest orientation: ``support`` with theta0 (radians).
+
+        Its load factor is the array's (``array_beta``, solved or fixed): the support's
+        contact is integrated with the beta its fixed-orientation array returns
+        (``worker.compute_support``).
+        """
+        return self.support.replace(theta0=math.radians(self.theta0))
 
     @property
     def array_beta(self):

@@ -104,14 +104,10 @@ def compute_support(params: Params, beta="self", rtol: float = 1e-6,
     return SupportData(used, result, fixed, " ".join(problems), time.perf_counter() - start)
 
 
-def sweep_params(params: Params) -> Params:
-    """``params`` without what a sweep over theta0 ignores (a shared cache key)."""
-    return params.replace(theta0=math.pi / 2, beta=1.0)
-
-
 def compute_polar(params: Params, beta="self", rtol: float = 1e-6):
-    """``orientation_table`` (Fig. 11) over ``POLAR_THETA0``: a ``SweepResult``."""
-    return orientation_table(sweep_params(params), theta0=POLAR_THETA0, beta=beta, rtol=rtol)
+    """``orientation_table`` (Fig. 11) of the support ``params`` (no theta0 of its own:
+    ``ExplorerState.support``) over ``POLAR_THETA0``: a ``SweepResult``."""
+    return orientation_table(params, theta0=POLAR_THETA0, beta=beta, rtol=rtol)
 
 
 def sweep_row(sweep, i: int = 0) -> dict:
@@ -185,10 +181,10 @@ ARRAY_FRAMES = 600
 
 
 def array_params(state) -> Params:
-    """The ``Params`` of the Array tab's ``compute_array_motion`` for an ``ExplorerState``
-    (beta solved inside; theta0 plays no part in a uniform array)."""
-    p = state.params.replace(beta=1.0)
-    return p.replace(theta0=math.pi / 2) if state.orientation == "uniform" else p
+    """The ``Params`` of the Array tab's ``compute_array_motion`` for an ``ExplorerState``:
+    the support alone for a uniform array (its orientations cover the circle), at the
+    slider's theta0 otherwise; beta is solved inside."""
+    return state.support if state.orientation == "uniform" else state.params
 
 
 def compute_array_motion(params: Params, orientation: str = "uniform"):

@@ -10,6 +10,7 @@ import math
 import numpy as np
 import pytest
 
+from app import worker
 from app.state import PRESETS, ExplorerState, classify
 from app.defaults import DEFAULTS, RTOLS
 from app.urlstate import parse, serialize, to_search
@@ -44,11 +45,31 @@ def test_each_physical_control_maps_to_its_field(name, value, field, expected):
 
 def test_beta_modes():
     s = ExplorerState(beta=0.4)
-    assert s.array_beta == "self" and s.params.beta == 1.0  # the solver finds beta
+    assert s.array_beta == "self"  # the solver finds beta
     s.beta_mode = "fixed"
-    assert s.array_beta == 0.4 and s.params.beta == 0.4
+    assert s.array_beta == 0.4
     s.beta = 1.0
-    assert s.array_beta == 1.0 and s.params.beta == 1.0
+    assert s.array_beta == 1.0
+
+
+def test_the_load_factor_and_orientations_travel_as_arguments_not_inside_params():
+    """``support`` is the support and its load, ``params`` adds the slider's theta0; the
+    load factor is the array functions' argument in both modes, so no call has to reset a
+    field of ``Params`` behind its caller's back."""
+    from model import Params
+    s = ExplorerState(k_r=0.5, k_theta=2.0, F_N=3.0, theta0=30.0, beta=0.4, beta_mode="fixed")
+    assert s.support == Params(k_r=0.5, k_theta=2.0, F_N=3.0)
+    assert s.params == s.support.replace(theta0=math.radians(30.0))
+    assert s.params.beta == 1.0 and s.array_beta == 0.4
+    # an orientation sweep covers its own theta0 values: given the one support's, it
+    # refuses it with the fix instead of quietly replacing it
+    with pytest.raises(ValueError, match="theta0=.*not used by orientation_sweep"):
+        worker.compute_polar(s.params, s.array_beta)
+    # the Array tab's input: the support alone for a uniform array, at theta0 otherwise
+    s.orientation = "uniform"
+    assert worker.array_params(s) == s.support
+    s.orientation = "fixed"
+    assert worker.array_params(s) == s.params
 
 
 def test_solver_and_display_controls_do_not_change_params():

@@ -1,6 +1,7 @@
 """Sessions that end mid-computation (the browser went away): the destroyed session's
 waiting job never starts, its queued work is cancelled, a late result is dropped and the
-result slot lets go of the session's document. (Other faults: tests/test_faults.py.)
+result slot lets go of the session's document; a debounced result is marked busy from the
+control change on. (Other faults: tests/test_faults.py.)
 """
 from __future__ import annotations
 
@@ -199,5 +200,40 @@ def test_a_destroyed_session_cancels_its_queued_work(monkeypatch):
         assert queued.cancelled()
         assert started == [] and doc.used_after_destroy == []
         await _until(lambda: not slot._running, 5.0)
+
+    asyncio.run(scenario())
+
+
+def test_a_delayed_request_marks_its_result_busy_at_once(monkeypatch):
+    """A debounced result (the uniform array, the design's array) is stale from the
+    control change on: its busy marker (the page's "Updating…") is set when the change
+    comes, not when the delay ends, and cleared when a change leaves nothing to compute."""
+    current = {}
+    monkeypatch.setattr(slots, "_session_doc", lambda: current.get("doc"))
+    monkeypatch.setattr(slots, "work_pool", Direct)
+    applied, plan = [], {"next": "job"}
+
+    def make():
+        if plan["next"] is None:
+            return None  # e.g. an unusable design: nothing to compute
+        done = cf.Future()
+        done.set_result(plan["next"])
+        return Request("any", None, lambda: done)
+
+    async def scenario():
+        current["doc"] = SessionDoc("A")
+        slot = Slot(Owner(), "D", make=make, apply=applied.append, delay_ms=300)
+        slot.request()
+        assert slot.owner.busy == {"D"}  # before the delay is over
+        await _until(lambda: applied == ["job"])
+        await _until(lambda: not slot.owner.busy, 5.0)
+        plan["next"] = "second"
+        slot.request()
+        assert slot.owner.busy == {"D"}
+        plan["next"] = None
+        slot.request()  # the second request is dropped with its marker
+        assert slot.owner.busy == set()
+        await asyncio.sleep(0.5)
+        assert applied == ["job"] and slot.owner.busy == set()
 
     asyncio.run(scenario())

@@ -98,7 +98,7 @@ def test_the_polar_snippet_computes_the_tab_s_sweep(tmp_path):
     code = smaller(view_as_python(state), f"n = {worker.POLAR_N}\n", "n = 8\n")
     got = run(code, "print(_j.dumps({k: np.asarray(polar.columns[k], float).tolist() "
                     "for k in ('theta0', 'FTx_over_mu0FN', 'Dy_over_Dx')}))", tmp_path)
-    page = worker.compute_polar(state.params, state.array_beta, state.rtol).columns
+    page = worker.compute_polar(state.support, state.array_beta, state.rtol).columns
     for key, values in got.items():
         np.testing.assert_allclose(values, np.asarray(page[key], float)[4::9], rtol=1e-9,
                                    err_msg=key)
