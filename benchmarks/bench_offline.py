@@ -144,9 +144,41 @@ def open_times(browser, path: Path, ready: str) -> float:
     return seconds
 
 
+#: Snapshot the plotted data (every ColumnDataSource's ``data``) and the ranges' bounds.
+SNAPSHOT = """() => {
+  const got = new Map();
+  for (const m of Bokeh.documents[0].all_models) {
+    if (m.data !== undefined && m.selected !== undefined) got.set(m, {data: m.data});
+    else if (m.start !== undefined && m.end !== undefined && m.bounds !== undefined)
+      got.set(m, {start: m.start, end: m.end});
+  }
+  return got;
+}"""
+#: The redraw floor: the two last contacts' data and ranges set again in turn, with no key,
+#: no worker and no text: ms from the change to the first animation frame after it (as
+#: ``explorer.keyToSupportMs`` ends), ``n`` times, 150 ms apart.
+FLOOR = """async ([before, n]) => {
+  const after = (%s)(), changed = [...after.keys()].filter((m) =>
+    before.get(m) && (m.data !== undefined ? before.get(m).data !== after.get(m).data
+                          : before.get(m).start !== after.get(m).start ||
+                            before.get(m).end !== after.get(m).end));
+  const times = [];
+  for (let i = 0; i < n; i++) {
+    const use = i %% 2 ? after : before, t0 = performance.now();
+    for (const m of changed) m.setv(use.get(m));
+    await new Promise((done) => requestAnimationFrame(() => {
+      times.push(performance.now() - t0); done();
+    }));
+    await new Promise((done) => setTimeout(done, 150));
+  }
+  return {times, changed: changed.length};
+}""" % SNAPSHOT
+
+
 def key_presses(browser, path: Path, presses: int) -> dict:
     """Key press -> redrawn: in the page (``explorer.keyToSupportMs``, absent in older
-    packs) and Playwright's round trips."""
+    packs), Playwright's round trips, and the redraw floor (``FLOOR``: the same data and
+    ranges set again without a key press or a computation)."""
     context = _context(browser)
     page = context.new_page()
     page.goto(path.as_uri())
@@ -154,6 +186,8 @@ def key_presses(browser, path: Path, presses: int) -> dict:
                            "explorer.uniformDrawn >= 1", timeout=120_000)
     handle = page.locator(".noUi-handle").nth(3)
     handle.focus()
+    page.wait_for_timeout(300)
+    before = page.evaluate_handle(SNAPSHOT)
     trips = []
     for i in range(presses):
         drawn = page.evaluate("explorer.drawn")
@@ -163,8 +197,10 @@ def key_presses(browser, path: Path, presses: int) -> dict:
         trips.append(1000 * (time.perf_counter() - t))
     page.wait_for_timeout(100)
     in_page = page.evaluate(f"explorer.keyToSupportMs ? explorer.keyToSupportMs.slice(-{presses}) : null")
+    page.wait_for_timeout(1000)  # the arrays of the last state drawn
+    floor = page.evaluate(FLOOR, [before, presses])
     context.close()
-    return dict(trips=trips, in_page=in_page)
+    return dict(trips=trips, in_page=in_page, floor=floor["times"], changed=floor["changed"])
 
 
 def browser_figures(paths: list[Path], repeats: int, presses: int, array_repeats: int,
@@ -259,6 +295,10 @@ def main() -> None:
                       f"{spread(in_page, digits=1)}, p95 {p95(in_page):.1f} ms")
             print(f"{path.name}: slider key press -> everything redrawn, Playwright's round "
                   f"trips: {spread(trips, digits=1)}, p95 {p95(trips):.1f} ms")
+            floor = [t for run in runs for t in run["floor"]]
+            print(f"{path.name}: the redraw floor (the {runs[0]['changed']} sources and ranges a "
+                  f"press changed, set again with no key, computation or text): "
+                  f"{spread(floor, digits=1)}, p95 {p95(floor):.1f} ms")
     for path, regimes in figures["arrays"].items():
         for name, t in regimes.items():
             print(f"{path.name}: {name}, F_N = 1, Chromium: polar sweep (72 orientations), "
