@@ -5,6 +5,9 @@ it, with the live count N_c against N_c0 and the force the drive needs, F_T,x/(m
 ``array_scene(motion, player)`` draws it from a ``model.arrays.array_motion.ArrayMotion``; all
 frames go to the browser once (float32, frame-major) and a ``CustomJS`` attached to the
 browser-side player (``app.figures.player``) draws each frame: no server round trip.
+What a frame moves is drawn on the plots' overlay layer, clipped to the plot area
+(``app.figures.common.animated_group``): the axes, grids, titles and still curves are
+not painted again, nor the keys (``app.figures.array_key``).
 """
 from __future__ import annotations
 
@@ -147,8 +150,8 @@ def array_scene(motion, player, width: int = 1000, panel_height: int = 220,
                 line_color={"field": "a", "transform": mapper})
     fig.scatter("mx", "my", source=now, size=9, line_color=BLACK, line_width=0.8,
                 fill_color={"field": "a", "transform": mapper})
-    # All of it moves, slab and velocity arrow on top as before: repainted alone each
-    # frame, clipped to the plot area (the slab slides out of the view).
+    # All of it moves (the slab at the bottom, the velocity arrow on top, as before):
+    # repainted alone each frame, clipped to the plot area (the slab slides out of view).
     animated_group(fig, *fig.renderers, velocity, name="array_top_moving")
     colorbar = colorbar_figure(mapper, 340 if responsive else width, responsive)
 
