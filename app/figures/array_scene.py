@@ -5,16 +5,21 @@ it, with the live count N_c against N_c0 and the force the drive needs, F_T,x/(m
 ``array_scene(motion, player)`` draws it from a ``model.arrays.array_motion.ArrayMotion``; all
 frames go to the browser once (float32, frame-major) and a ``CustomJS`` attached to the
 browser-side player (``app.figures.player``) draws each frame: no server round trip.
+What a frame moves is drawn on the plots' overlay layer, clipped to the plot area
+(``app.figures.common.animated_group``): the axes, grids, titles and still curves are
+not painted again, nor the keys (``app.figures.array_key``).
 """
 from __future__ import annotations
 
 import numpy as np
 from bokeh.layouts import column
-from bokeh.models import (Arrow, BoxAnnotation, ColorBar, CustomJS, Div, Label,
-                          LinearColorMapper, Range1d, Span, VeeHead)
+from bokeh.models import (Arrow, BoxAnnotation, CustomJS, Div, Label, LinearColorMapper,
+                          Range1d, Span, VeeHead)
 
+from .array_key import colorbar_figure, html_key
 from .array_readout import last_counted, readout_text, settled_mean
-from .common import BLACK, BLUE, GREEN, GREY, ORANGE, VERMILION, new_figure, source
+from .common import (BLACK, BLUE, GREEN, GREY, ORANGE, VERMILION, animated_group, annotation,
+                     new_figure, source)
 from .live_text import live_div, live_html
 from .player import UI_MS
 
@@ -128,9 +133,9 @@ def array_scene(motion, player, width: int = 1000, panel_height: int = 220,
     arrow = source("array_velocity", {"x0": [lead - 0.8 * L0], "x1": [lead - 0.2 * L0],
                                       "xt": [lead - 0.8 * L0], "align": ["left"],
                                       "y": [half_w + 0.9]})
-    fig.add_layout(Arrow(end=VeeHead(size=14, fill_color=BLUE, line_color=BLUE),
-                         x_start="x0", y_start="y", x_end="x1", y_end="y", source=arrow,
-                         line_color=BLUE, line_width=4))
+    velocity = Arrow(end=VeeHead(size=14, fill_color=BLUE, line_color=BLUE), x_start="x0",
+                     y_start="y", x_end="x1", y_end="y", source=arrow, line_color=BLUE,
+                     line_width=4)
     fig.text(x="xt", y="y", text={"value": "slab velocity V₀"}, source=arrow,
              text_font_size="14px", text_color=BLUE, text_baseline="bottom",
              text_align={"field": "align"}, y_offset=-5, name="array_velocity_label")
@@ -145,7 +150,10 @@ def array_scene(motion, player, width: int = 1000, panel_height: int = 220,
                 line_color={"field": "a", "transform": mapper})
     fig.scatter("mx", "my", source=now, size=9, line_color=BLACK, line_width=0.8,
                 fill_color={"field": "a", "transform": mapper})
-    colorbar = _colorbar_figure(mapper, 340 if responsive else width, responsive)
+    # All of it moves (the slab at the bottom, the velocity arrow on top, as before):
+    # repainted alone each frame, clipped to the plot area (the slab slides out of view).
+    animated_group(fig, *fig.renderers, velocity, name="array_top_moving")
+    colorbar = colorbar_figure(mapper, 340 if responsive else width, responsive)
 
     panel = _panel(motion, width, panel_height)
     # Text only (app.figures.live_text): a change redraws the readout, not the page.
@@ -158,12 +166,17 @@ def array_scene(motion, player, width: int = 1000, panel_height: int = 220,
                                      "N_c0": motion.N_c0.astype(float),
                                      "last": last_counted(motion).astype(float)})
     live = source("array_live", _live(motion, 0))
-    panel.line("t", "nc", source=live, line_color=BLUE, line_width=3)
-    panel.line("t", "ftx", source=live, line_color=VERMILION, line_alpha=0.45, line_width=1.2)
-    panel.line("t", "run", source=live, line_color=VERMILION, line_width=3)
+    lines = [panel.line("t", "nc", source=live, line_color=BLUE, line_width=3),
+             panel.line("t", "ftx", source=live, line_color=VERMILION, line_alpha=0.45,
+                        line_width=1.2),
+             panel.line("t", "run", source=live, line_color=VERMILION, line_width=3)]
     cursors = [Span(location=0.0, dimension="height", line_color=GREY, line_width=1.5,
                     name="array_cursor")]
-    panel.add_layout(cursors[0])
+    # The growing curves and the cursor, under the steady window's tint and label as the
+    # still curves are: repainted alone, clipped to the plot area (F_T,x leaves it).
+    animated_group(panel, *lines, *(annotation(panel, n) for n in ("array_steady",
+                                                                 "array_steady_label")),
+                   *cursors, name="array_live_moving")
     m = motion.model
     panel_key = Div(text=html_key([
         ("line", BLUE, "solid", 3, "N_c/N_c0 live"),
@@ -209,12 +222,6 @@ def array_scene(motion, player, width: int = 1000, panel_height: int = 220,
         fig.height = int(top_height)
     return column(*parts, name="array_scene",
                   sizing_mode="stretch_width" if responsive else None)
-
-
-def _ticker():
-    from bokeh.models import FixedTicker
-
-    return FixedTicker(ticks=[-90, -45, 0, 45, 90])
 
 
 def _stripes(lead, L0, half_w, offsets):
@@ -271,55 +278,12 @@ def _panel(motion, width, height):
     fig.add_layout(BoxAnnotation(left=motion.steady[0], right=motion.steady[1],
                                  fill_color=GREEN, fill_alpha=0.08, name="array_steady"))
     fig.add_layout(Label(x=motion.steady[0], y=5, y_units="screen", text="steady window",
-                         text_color=GREEN, text_font_size="13px", x_offset=4))
+                         text_color=GREEN, text_font_size="13px", x_offset=4,
+                         name="array_steady_label"))
     fig.line([0, T], [m["Nc_over_Nc0"]] * 2, line_color=BLUE, line_dash="dashed", line_width=2)
     fig.line([0, T], [m["FTx_over_mu0FN_duration"]] * 2, line_color=VERMILION,
              line_dash="dashed", line_width=2)
     fig.line([0, T], [1, 1], line_color=GREY, line_dash="dotted", line_width=2)
-    return fig
-
-
-def html_key(items) -> str:
-    """A legend in HTML: it is not repainted with the canvas on every frame.
-
-    ``items``: (kind, colour, dash, width, label) with kind "line", "box", "dot" or "square".
-    """
-    parts = []
-    for kind, color, dash, lw, label in items:
-        if kind == "line":
-            swatch = (f"<span style='display:inline-block;width:30px;vertical-align:middle;"
-                      f"border-top:{max(lw, 1)}px {dash} {color}'></span>")
-        elif kind == "box":
-            swatch = (f"<span style='display:inline-block;width:22px;height:12px;"
-                      f"vertical-align:middle;background:{color};opacity:0.35'></span>")
-        else:
-            radius = "50%" if kind == "dot" else "0"
-            swatch = (f"<span style='display:inline-block;width:11px;height:11px;"
-                      f"vertical-align:middle;border-radius:{radius};background:{color};"
-                      f"border:1px solid #000'></span>")
-        parts.append(f"<span style='white-space:nowrap;margin-right:14px'>{swatch} {label}</span>")
-    return " ".join(parts)
-
-
-def _colorbar_figure(mapper, width, responsive: bool = False):
-    """The colour scale in a figure of its own, which stays still during playback: with a
-    copy of the glyphs' colour mapper (a shared one tells the bar to redraw, and its figure
-    to lay itself out again, each time the glyphs map their colours: every frame)."""
-    from bokeh.plotting import figure
-
-    mapper = type(mapper)(**mapper.properties_with_values(include_defaults=False))
-
-    fig = figure(width=width, height=74, toolbar_location=None, x_axis_type=None,
-                 y_axis_type=None, outline_line_color=None, min_border=0,
-                 name="array_colorbar_figure")
-    fig.scatter([0], [0], visible=False)  # a figure needs a renderer
-    fig.grid.visible = False
-    fig.add_layout(ColorBar(color_mapper=mapper, orientation="horizontal", height=14,
-                            width="auto" if responsive else min(420, width - 40),
-                            title="friction direction [° from +x]",
-                            location="top_left",
-                            title_text_font_size="13px", major_label_text_font_size="13px",
-                            name="array_colorbar", ticker=_ticker(), padding=4), "above")
     return fig
 
 

@@ -11,8 +11,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from bokeh.models import (ColorBar, ColumnDataSource, CustomJS, GlyphRenderer, Label, LabelSet,
-                          Legend, Text, Title)
+from bokeh.models import (ColorBar, ColumnDataSource, CompositeRenderer, CustomJS, GlyphRenderer,
+                          Label, LabelSet, Legend, Span, Text, Title)
 from bokeh.plotting import figure
 
 #: Okabe-Ito colours: distinguishable with colour-blindness and on a projector.
@@ -54,9 +54,17 @@ def sources(fig) -> dict:
 
 
 def _renderers(fig):
-    """Everything ``fig`` draws: its renderers (glyphs, an annotation placed among them)
-    and its annotations."""
-    return (*fig.renderers, *fig.center, *fig.above, *fig.below, *fig.left, *fig.right)
+    """Everything ``fig`` draws: its renderers (glyphs, an annotation placed among them),
+    its annotations and the parts of a group of them (``animated_group``)."""
+    found = []
+
+    def walk(models):
+        for model in models:
+            found.append(model)
+            if isinstance(model, CompositeRenderer):
+                walk(model.renderers)
+    walk((*fig.renderers, *fig.center, *fig.above, *fig.below, *fig.left, *fig.right))
+    return tuple(found)
 
 
 def annotation(fig, name: str):
@@ -113,6 +121,24 @@ def animated(*models) -> None:
     moving glyph's data must stay inside the plot's ranges."""
     for model in models:
         model.level = ANIMATED
+
+
+def animated_group(fig, *models, name: str | None = None) -> Span:
+    """Draw ``models`` (``fig``'s glyph renderers and annotations, bottom first) as
+    ``animated``, clipped to the plot area as still glyphs are, so they may leave the
+    plot's view (a sliding slab, a zoomed plot): on the overlay layer BokehJS clips
+    annotations, not glyphs, so they are drawn as the parts of an annotation that draws
+    nothing itself (a ``Span`` without a location; Bokeh's ``CompositeRenderer.renderers``,
+    painted inside their group's clip). The group takes the place of the first of them
+    among ``fig``'s renderers; returns it."""
+    moved = {model.id for model in models}
+    at = next((k for k, r in enumerate(fig.renderers) if r.id in moved), len(fig.renderers))
+    group = Span(location=None, renderers=list(models), name=name)
+    animated(group, *models)
+    fig.center = [m for m in fig.center if m.id not in moved]
+    kept = [r for r in fig.renderers if r.id not in moved]
+    fig.renderers = [*kept[:at], group, *kept[at:]]  # none of them before the first
+    return group
 
 
 def legend_stand_ins(fig) -> None:
@@ -209,11 +235,11 @@ def style(fig, projector: bool) -> None:
         fig.title.text_font_size = title
     for grid in (*fig.xgrid, *fig.ygrid):
         grid.grid_line_color = "#999999" if projector else "#e5e5e5"
-    layouts = (*fig.center, *fig.above, *fig.below, *fig.left, *fig.right)
+    layouts = _renderers(fig)
     for legend in (m for m in layouts if isinstance(m, Legend)):
         legend.label_text_font_size = tick
         legend.background_fill_alpha = 0.9 if projector else 0.7
-    for renderer in (r for r in fig.renderers if isinstance(r, GlyphRenderer)):
+    for renderer in (r for r in layouts if isinstance(r, GlyphRenderer)):
         base = _base_width(renderer.glyph)
         if base is not None:
             renderer.glyph.line_width = base * (2.0 if projector else 1.0)

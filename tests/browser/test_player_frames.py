@@ -153,7 +153,9 @@ def test_the_support_player_changes_nothing_outside_its_tab(page, page_log, app_
 
 
 # Counts, while the player plays, how often each canvas layer of each figure is cleared
-# (BokehJS clears a layer to repaint it) and how many elements the legends get anew.
+# (BokehJS clears a layer to repaint it) and how many elements the legends get anew. A
+# layer is named after the figure's element (``layers``, by its ``figure-`` class) and
+# after the plot it draws (``plots``, by the plot's name).
 _LAYERS_JS = """async ([player, ms]) => {
   const clears = new Map(), C = CanvasRenderingContext2D.prototype, clear = C.clearRect;
   C.clearRect = function (...a) { clears.set(this.canvas, (clears.get(this.canvas) || 0) + 1);
@@ -172,8 +174,18 @@ _LAYERS_JS = """async ([player, ms]) => {
   await new Promise((r) => setTimeout(r, ms));
   C.clearRect = clear;
   observer.disconnect();
-  const out = {frames, legends, layers: {}};
+  const out = {frames, legends, layers: {}, plots: {}};
+  const plots = new Map();
+  for (const d of Bokeh.documents) for (const m of d.all_models) {
+    const view = m.name && typeof m.output_backend === "string" ? Bokeh.index.find_one(m) : null;
+    if (view && view.canvas_view) {
+      plots.set(view.canvas_view.primary.canvas, `${m.name}:0`);
+      plots.set(view.canvas_view.overlays.canvas, `${m.name}:1`);
+    }
+  }
   for (const [canvas, n] of clears) {
+    const plot = plots.get(canvas);
+    if (plot) out.plots[plot] = (out.plots[plot] || 0) + n;
     let host = canvas, figure = null;
     while (figure === null) {
       const root = host.getRootNode();
@@ -191,27 +203,51 @@ _LAYERS_JS = """async ([player, ms]) => {
 }"""
 
 
+def _layers_while_playing(page, player, ms: int = 3000) -> dict:
+    """``_LAYERS_JS``'s counts over ``ms`` of playback, in a window in which the server
+    sent the page nothing (a result arriving may repaint anything)."""
+    _quiet(page)
+    _set_play(page, player, True)
+    page.get_by_role("button", name="‖ Pause").first.wait_for(timeout=30_000)
+    page.wait_for_timeout(500)
+    for _ in range(5):
+        received = len(page.__mp_received)
+        seen = page.evaluate(_LAYERS_JS, [player, ms])
+        if len(page.__mp_received) == received:
+            break
+    _set_play(page, player, False)
+    return seen
+
+
 def test_a_playing_support_repaints_only_what_moves(page, page_log, app_url):
     """Per frame, each figure repaints its moving layer only: the axes, grid, legends and
     still curves are not drawn again, and no legend is built anew."""
     _open(page, app_url, "support", "support_player")
     pt.wait_for(page, lambda: len((pt.read_source(page, "support_frames") or {}).get("tau", []))
                 > 0, timeout_s=120, what="the player's frames")
-    _quiet(page)
-    _set_play(page, "support_player", True)
-    page.get_by_role("button", name="‖ Pause").first.wait_for(timeout=30_000)
-    page.wait_for_timeout(500)
     figures = ("figure-scene", "figure-forces", "figure-friction_law", "figure-energy_live_layout")
-    for _ in range(5):  # a window in which the server sent the page nothing
-        received = len(page.__mp_received)
-        seen = page.evaluate(_LAYERS_JS, ["support_player", 3000])
-        if len(page.__mp_received) == received:
-            break
-    _set_play(page, "support_player", False)
+    seen = _layers_while_playing(page, "support_player")
     assert seen["frames"] >= 10, seen
     for fig in figures:
         assert seen["layers"].get(f"{fig}:1", 0) >= 3, f"{fig}'s moving layer was not drawn: {seen}"
         assert seen["layers"].get(f"{fig}:0", 0) == 0, \
             f"{fig}'s still drawing was repainted while the player played: {seen}"
     assert seen["legends"] == 0, f"legends built anew while the player played: {seen}"
+    assert page_log.errors == [], page_log.errors
+
+
+def test_a_playing_array_repaints_only_what_moves(page, page_log, app_url):
+    """Per frame, the top view repaints only its moving layer (the slab, which slides out
+    of the view, and the supports), the live panel only its growing curves and cursor:
+    their axes, grids and titles are not drawn again, the colour scale not at all, and no
+    legend is built anew."""
+    _open(page, app_url, "array", "array_player")
+    seen = _layers_while_playing(page, "array_player")
+    assert seen["frames"] >= 10, seen
+    for plot in ("array_top", "array_live_panel"):
+        assert seen["plots"].get(f"{plot}:0", 0) == 0, \
+            f"{plot}'s still drawing was repainted while the array played: {seen}"
+        assert seen["plots"].get(f"{plot}:1", 0) >= 3, f"{plot}'s moving layer was not drawn: {seen}"
+    assert not any(k.startswith("array_colorbar_figure") for k in seen["plots"]), seen
+    assert seen["legends"] == 0, f"legends built anew while the array played: {seen}"
     assert page_log.errors == [], page_log.errors
