@@ -280,6 +280,16 @@ class Session:
         latencies.append(max(0.0, self.last_orbit_read - wrote))
         self.client_latencies.append(now - sent)
 
+    def _movable(self) -> list[str]:
+        """The sliders whose move changes the motion, so that new orbit data is sent (the
+        page is sent only data that changed): with theta0 on the axis (0 or 180 degrees) the
+        torsional spring is never twisted and k_theta changes nothing."""
+        names = list(self.sliders)
+        theta0 = self.sliders.get("theta0")
+        if theta0 is not None and round(theta0.value, 6) % 180 == 0 and len(names) > 1:
+            names = [n for n in names if n != "k_theta"]
+        return names
+
     def _position(self, name: str) -> float:
         s = self.sliders[name]
         steps = int(round((s.end - s.start) / s.step))
@@ -298,7 +308,7 @@ class Session:
 
     async def move(self, drags: bool = True) -> None:
         """One slider move (or drag) and the wait for its update."""
-        name = self.rng.choice(list(self.sliders))
+        name = self.rng.choice(self._movable())
         drag = drags and name == "theta0" and self.rng.random() < DRAG_PROBABILITY
         self._patched.clear()
         for step in range(DRAG_STEPS if drag else 1):
@@ -369,7 +379,7 @@ class Session:
             if now >= until and not pending:
                 return
             if now >= next_move and now < until:
-                name = self.rng.choice(list(self.sliders))
+                name = self.rng.choice(self._movable())
                 value = self._position(name)
                 sent, pushes = time.perf_counter(), self.orbit_pushes
                 wrote = await self._set(name, value)
