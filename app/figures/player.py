@@ -231,14 +231,15 @@ class BrowserPlayer:
     _ready_js: CustomJS
     timeline: ColumnDataSource = None
 
-    def set_times(self, times, label: str | None = None) -> None:
-        """New times for the frames (a new trajectory): the readout follows them."""
+    def set_times(self, times) -> None:
+        """New times for the frames (a new trajectory): in the page the readout follows
+        them at the frame on show (which the page alone knows: a paused player keeps its
+        frame)."""
         times = np.asarray(times, float)
         if times.shape != (self.n_frames,):
             raise ValueError(f"times has {times.size} values; give one per frame "
                              f"({self.n_frames})")
         self.timeline.data = {"t": times}
-        self.readout.html = _readout(0, self.n_frames, times[0], "τ" if label is None else label)
 
     @property
     def n_frames(self) -> int:
@@ -321,6 +322,8 @@ def browser_player(n_frames: int, times=None, fps: float = 30.0, autoplay: bool 
     forward.js_on_event("button_click", CustomJS(args=args, code=_PRELUDE + "st.step(1);"))
     first.js_on_event("button_click", CustomJS(args=args, code=_PRELUDE + "st.step(-n);"))
     loop_t.js_on_change("active", CustomJS(args=args, code=_PRELUDE))
+    # New times (a new trajectory): the readout names the frame on show at its new time.
+    timeline.js_on_change("data", CustomJS(args=args, code=_PRELUDE + "st.ui(true);"))
     speed.js_on_change("value", CustomJS(args=args, code=_PRELUDE))
     # The slider dragged: jump there (the timer, when playing, goes on from there).
     slider.js_on_change("value", CustomJS(args=args, code=_PRELUDE + """

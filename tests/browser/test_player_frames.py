@@ -149,6 +149,17 @@ def test_the_support_player_changes_nothing_outside_its_tab(page, page_log, app_
                 what="one step forward")
     page.wait_for_timeout(300)
     assert f"frame {frame + 2} / {n}" in _model(page, "support_player_readout", "html")
+    # A move while paused: the scene stays at the frame on show, and so does the readout,
+    # with that frame's time in the new contact.
+    times = _model(page, "support_player_times", "data.t")
+    pt.move_slider(page, pt.slider_handle(page, title_pattern="F_N"), presses=2)
+    pt.wait_for(page, lambda: _model(page, "support_player_times", "data.t") != times,
+                timeout_s=60, what="the new contact's times")
+    page.wait_for_timeout(300)
+    new_tau = _model(page, "support_player_times", "data.t")[frame + 1]
+    readout = _model(page, "support_player_readout", "html")
+    assert f"frame {frame + 2} / {n} · τ = {new_tau:.2f}" in readout, (frame, new_tau, readout)
+    assert _frame(page, "support_player") == frame + 1
     assert page_log.errors == [], page_log.errors
 
 
