@@ -22,7 +22,6 @@ from bokeh.util.token import get_session_id
 from tornado.httpclient import AsyncHTTPClient, HTTPRequest
 from tornado.websocket import websocket_connect
 
-
 UPDATE_TIMEOUT_S = 30.0
 OPEN_TIMEOUT_S = 120.0
 #: The title of the server's busy page (app/main.py) and how long a client waits before
@@ -42,8 +41,6 @@ PROFILES = {
             f"drag ({DRAG_GAP_S * 1e3:.0f} ms apart)",
 }
 
-
-# ------------------------------------------------------------------------------ sessions
 
 class SessionFailure(Exception):
     """A session could not open, stalled or lost its connection."""
@@ -281,14 +278,10 @@ class Session:
         self.client_latencies.append(now - sent)
 
     def _movable(self) -> list[str]:
-        """The sliders whose move changes the motion, so that new orbit data is sent (the
-        page is sent only data that changed): with theta0 on the axis (0 or 180 degrees) the
-        torsional spring is never twisted and k_theta changes nothing."""
-        names = list(self.sliders)
-        theta0 = self.sliders.get("theta0")
-        if theta0 is not None and round(theta0.value, 6) % 180 == 0 and len(names) > 1:
-            names = [n for n in names if n != "k_theta"]
-        return names
+        """The sliders whose move changes the motion (only changed data is sent): with
+        theta0 on the axis the torsional spring never twists, so k_theta changes nothing."""
+        on_axis = round(getattr(self.sliders.get("theta0"), "value", 1.0), 6) % 180 == 0
+        return [n for n in self.sliders if not (on_axis and n == "k_theta")] or list(self.sliders)
 
     def _position(self, name: str) -> float:
         s = self.sliders[name]
