@@ -12,7 +12,6 @@ A's numbers as well (its variables end in ``_A``) and prints B − A.
 """
 from __future__ import annotations
 
-import math
 import textwrap
 
 from model import __version__

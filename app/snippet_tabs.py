@@ -8,7 +8,6 @@ tab's own.
 """
 from __future__ import annotations
 
-import math
 
 from model.cli.snippet import params_source, source
 from model.contact.regimes import EXPLORED_MAP
