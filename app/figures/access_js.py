@@ -13,7 +13,8 @@ Python, so a script walks the shadow roots, again whenever one of them changes.
 * ``HANDLE_NAMES_JS`` defines ``nameHandles(root)``: names each slider handle
   (``role="slider"``) after its slider's visible title, so a screen reader says what it
   sets ("frame", "k_r radial stiffness (log)"; a range slider's two handles: "..., from",
-  "..., to") -- WCAG 4.1.2;
+  "..., to"), and gives it the value the slider shows as its ``aria-valuetext`` ("0.1",
+  not the log slider's position "-1.0") -- WCAG 4.1.2;
 * ``FIGURE_NAMES_JS`` defines ``nameFigures(roots)``: gives each drawn Bokeh plot marked
   by ``figure_classes`` (``mark_figures``) ``role="figure"``, its title as its name and,
   when the page defines
@@ -92,11 +93,25 @@ function handleName(root, handle) {
   return words + (handle.getAttribute("data-handle") === "0" ? ", from" : ", to");
 }
 
+// The value as the slider shows it ("0.1" on a log slider whose position is -1), or, for
+// a range slider's handle, its end of the shown range ("0.1 .. 3").
+function handleValue(root, handle) {
+  const shown = root.querySelector(".bk-slider-value");
+  const text = shown && shown.textContent.trim();
+  if (!text) return null;
+  if (root.querySelectorAll(".noUi-handle").length < 2) return text;
+  const ends = text.split(/\\s*\\.\\.\\s*/);
+  return ends.length === 2 ? ends[handle.getAttribute("data-handle") === "0" ? 0 : 1] : text;
+}
+
 function nameHandles(root) {
   for (const handle of root.querySelectorAll(".noUi-handle")) {
     const name = handleName(root, handle);
     if (name && handle.getAttribute("aria-label") !== name)
       handle.setAttribute("aria-label", name);
+    const value = handleValue(root, handle);
+    if (value && handle.getAttribute("aria-valuetext") !== value)
+      handle.setAttribute("aria-valuetext", value);
   }
 }
 """

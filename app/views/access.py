@@ -9,8 +9,8 @@ shadow roots (again whenever one of them changes, debounced) and:
   focusable control and text colours with a contrast of at least 4.5:1 where Bokeh's and
   Panel's defaults fall short;
 * names each slider handle (``role="slider"``) after its visible title, so a screen
-  reader says "k_r radial stiffness (log), 0.48" (a range slider's two handles: "from",
-  "to");
+  reader says "k_r radial stiffness (log), 3" -- the value the slider shows, not its log
+  position (a range slider's two handles: "from", "to");
 * hides typeset equations' SVG from screen readers: each equation's text is written
   beside it (``EquationsView``), in a visually hidden paragraph;
 * lets the keyboard reach a region that scrolls sideways (a long equation on a phone);
