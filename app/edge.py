@@ -130,11 +130,12 @@ def drop_unreadable_session_id(request) -> None:
 
 # ---------------------------------------------------------------------- 2. busy page
 def answer_busy_before_building(busy_html: str, has_room) -> None:
-    from panel.io.server import DocHandler
+    from panel.io import server
 
-    if getattr(DocHandler.get, "_busy_first", False):
+    handler = server.DocHandler  # Panel's page handler: its ``get`` builds the session
+    if getattr(handler.get, "_busy_first", False):
         return
-    build = DocHandler.get
+    build = handler.get
 
     async def get(self, *args, **kwargs):
         if not has_room(self.request.remote_ip):
@@ -145,7 +146,7 @@ def answer_busy_before_building(busy_html: str, has_room) -> None:
         return await build(self, *args, **kwargs)
 
     get._busy_first = True
-    DocHandler.get = get
+    handler.get = get
 
 
 # ---------------------------------------------------------------------- 3. text views
@@ -157,8 +158,13 @@ def answer_busy_before_building(busy_html: str, has_room) -> None:
 #: detached stand-in (the drawing reads the model's state anew). It relies on Panel's
 #: bundle defining ``container`` as a plain property (no class field).
 MARKUP_GUARD_JS = """
-const html = Bokeh.Models.get("panel.models.markup.HTML");
-const base = html == null ? null : Object.getPrototypeOf(html.prototype.default_view.prototype);
+// The prototype of the view BokehJS makes for the model named ``name``, or null.
+const viewOf = (name) => {
+  try { return Bokeh.Models.get(name)?.prototype?.default_view?.prototype ?? null; }
+  catch (e) { return null; }
+};
+const markup = viewOf("panel.models.markup.HTML");
+const base = markup == null ? null : Object.getPrototypeOf(markup);
 if (base != null && Object.getOwnPropertyDescriptor(base, "container") == null) {
   Object.defineProperty(base, "container", {
     configurable: true,
@@ -170,9 +176,7 @@ if (base != null && Object.getOwnPropertyDescriptor(base, "container") == null) 
 // Panel's FileDownload its anchor and button) before the view has drawn them: until then
 // the undrawn ones are skipped (the drawing reads ``disabled`` from the model).
 for (const name of Bokeh.Models.names ?? []) {
-  let proto = null;
-  try { proto = Bokeh.Models.get(name)?.prototype?.default_view?.prototype ?? null; }
-  catch (e) { proto = null; }
+  const proto = viewOf(name);
   if (proto == null || !Object.prototype.hasOwnProperty.call(proto, "controls")
       || proto.controls.mp_guarded) continue;
   const controls = proto.controls;
@@ -182,8 +186,7 @@ for (const name of Bokeh.Models.names ?? []) {
 }
 // Panel's FileDownload updates its label, file name and style on its drawn anchor: until
 // the view is drawn those updates wait for the drawing, which reads the model anew.
-const download = Bokeh.Models.get("panel.models.widgets.FileDownload");
-const dl = download == null ? null : download.prototype.default_view.prototype;
+const dl = viewOf("panel.models.widgets.FileDownload");
 for (const method of ["_update_label", "_update_download", "_update_href",
                       "_update_button_style", "_handle_click"]) {
   const original = dl == null ? null : dl[method];
