@@ -77,3 +77,29 @@ def test_the_offline_figures_are_named_and_described_by_the_state(browser, explo
             assert all("k_r = 0.03, k_θ = 0.03" in words for words in soft.values()), soft
     finally:
         context.close()
+
+
+def test_the_offline_sliders_announce_the_values_they_show(browser, explorer_file):
+    """A screen reader hears k_r = 3, not the log slider's position 0.48 (WCAG 4.1.2)."""
+    context = browser.new_context(viewport=VIEWPORT)
+    context.set_default_timeout(60_000)
+    try:
+        page = context.new_page()
+        page.goto(f"{explorer_file.as_uri()}#regime=pendulum")
+        page.wait_for_function(f"{DRAWN} >= 1", timeout=120_000)
+        page.wait_for_timeout(500)  # the page names its handles 100 ms after a change
+        spoken = {h.get_attribute("aria-label").split(":")[0]: h.get_attribute("aria-valuetext")
+                  for h in page.get_by_role("slider").all()}
+        assert {k: spoken.get(k) for k in ("k_r", "k_θ", "F_N", "θ₀")} == {
+            "k_r": "3", "k_θ": "0.01", "F_N": "1", "θ₀": "90"}, spoken
+        handle = page.get_by_role("slider", name="k_r: radial stiffness (Eq. 5)")
+        handle.focus()
+        for _ in range(4):
+            page.keyboard.press("ArrowLeft")
+        page.wait_for_timeout(300)
+        position = page.evaluate("[...Bokeh.documents[0].all_models].find("
+                                 "(m) => m.name === 'slider-k_r').value")
+        value = float(handle.get_attribute("aria-valuetext"))
+        assert value < 3 and abs(value - 10 ** position) <= 0.01 * value, (value, position)
+    finally:
+        context.close()
