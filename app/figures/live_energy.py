@@ -96,8 +96,9 @@ def live_energy_figure(energies: dict, player, width: int = 420, height: int = 3
     if n != player.n_frames:
         raise ValueError(f"{n} energy samples for a player of {player.n_frames} frames; "
                          f"use energy_frames(series, player.n_frames)")
-    fig = new_figure("energy_live", "Where the slab's work goes, now (Eq. 12)", width, height,
-                     x_range=Range1d(0, 3.2), y_range=Range1d(*energy_live_range(energies)),
+    fig = new_figure("energy_live", "The slab's work, now (Eq. 12)", width, height,
+                     # the bars' width: the legend stands beside the plot, not over it
+                     x_range=Range1d(0, 2), y_range=Range1d(*energy_live_range(energies)),
                      y_axis_label="energy / (m V₀²)")
     fig.tools = [t for t in fig.tools if type(t).__name__ in ("SaveTool",)]
     bars = source("energy_live_bars", _bars(energies, 0))
@@ -116,7 +117,7 @@ def live_energy_figure(energies: dict, player, width: int = 420, height: int = 3
     fig.center = [m for m in fig.center if m is not legend]
     fig.add_layout(legend, "right")
     readout_box = live_div(_energy_text(energies, 0), name="energy_live_readout", width=width,
-                           styles={"font-size": "14px"})
+                           styles={"font-size": "max(14px, var(--bokeh-font-size, 14px))"})
     readout = live_html(readout_box)
     data = frames if frames is not None else source(
         "energy_live_frames", energy_live_data(energies)["energy_live_frames"])

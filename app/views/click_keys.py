@@ -13,7 +13,7 @@ from __future__ import annotations
 import panel as pn
 
 from ..state import ExplorerState
-from .layout import BUTTON_CSS
+from .layout import BUTTON_CSS, FIT_TEXT_CSS
 from .widgets import caption, look
 
 #: A map cell when no map is there yet: the shipped maps' 24 cells over [0.01, 3].
@@ -33,7 +33,7 @@ def map_cell(regime_map) -> float:
 def _button(label: str, css: str, action, tip: str) -> pn.widgets.Button:
     button = pn.widgets.Button(**caption(label), description=tip, **look("default", "outline"),
                                css_classes=["click-key", css], margin=(2, 3), width=64,
-                               stylesheets=[BUTTON_CSS])
+                               stylesheets=[BUTTON_CSS, FIT_TEXT_CSS])
     button.on_click(lambda _: action())
     return button
 

@@ -37,7 +37,7 @@ from .design_readouts import DesignReadouts
 from .design_speeds import FrictionSpeedsView
 from .design_upload import HistogramUpload
 from .design_words import STATUS_WORDS, design_map_description, design_polar_description
-from .layout import INPUT_CSS, PHONE, TOP, WIDE, grid_css, mode_classes, projector_grid
+from .layout import FIT_TEXT_CSS, INPUT_CSS, PHONE, TOP, WIDE, grid_css, mode_classes, projector_grid
 from .locked import locked as _locked
 from .widgets import caption, look
 
@@ -152,6 +152,8 @@ class DesignView(pn.viewable.Viewer):
                        self.mix, self.family2, self.angle2, self.kappa2, self.objective,
                        self.bound, self.optimise_button, self.cancel_button):
             widget.stylesheets = [*widget.stylesheets, INPUT_CSS]  # touch-sized on a phone
+        for button in (self.optimise_button, self.cancel_button):
+            button.stylesheets = [*button.stylesheets, FIT_TEXT_CSS]
         self.upload = HistogramUpload(state=s)
         self.optimise_button.on_click(lambda _e: self.results.optimise())
         self.cancel_button.on_click(lambda _e: self.results.cancel_optimum())

@@ -27,7 +27,7 @@ from .design_law import FORMAT, curve_input, take_upload
 from .access import LiveDescription, figure_classes
 from .design_upload import plain
 from .design_words import speeds_description
-from .layout import INPUT_CSS
+from .layout import FIT_TEXT_CSS, INPUT_CSS
 from .locked import locked
 from .widgets import caption, look
 
@@ -67,10 +67,10 @@ class FrictionSpeedsView(pn.viewable.Viewer):
             css_classes=["ctl-speeds_n"], stylesheets=[INPUT_CSS])
         self.predict = pn.widgets.Button(**caption("Predict"), **look("primary"), width=90,
                                          css_classes=["design-speeds-predict"],
-                                         stylesheets=[INPUT_CSS])
+                                         stylesheets=[INPUT_CSS, FIT_TEXT_CSS])
         self.cancel = pn.widgets.Button(**caption("Cancel"), **look("light"), width=70,
                                         disabled=True, css_classes=["design-speeds-cancel"],
-                                        stylesheets=[INPUT_CSS])
+                                        stylesheets=[INPUT_CSS, FIT_TEXT_CSS])
         self.predict.on_click(lambda _e: self.results.predict_speeds())
         self.cancel.on_click(lambda _e: self.results.cancel_speeds())
         self.progress = pn.indicators.Progress(value=0, max=1, width=160, margin=(8, 5),

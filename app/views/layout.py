@@ -146,6 +146,11 @@ BUTTON_CSS = f"""
 """
 
 
+#: A button of a set width grows to hold its caption where the text is larger (projected,
+#: 1.5 x) instead of letting it run over its neighbour.
+FIT_TEXT_CSS = ":host { min-width: max-content !important; } .bk-btn { white-space: nowrap; }"
+
+
 #: Text inputs, number inputs and menus touch-sized on a phone.
 INPUT_CSS = (f"{PHONE} {{ .bk-input, .bk-btn {{ min-height: 44px !important; }} "
              # the number keypad replaces a number input's 18-px arrows on a phone

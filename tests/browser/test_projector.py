@@ -1,8 +1,9 @@
 """Projector mode as a class sees it: at 1280x720 and 1920x1080 with ``?projector=1``, on
 every tab, the page never scrolls sideways, the main figure is drawn at least as large as
 in normal mode, every figure's text is at least the projector minimum, legends, titles,
-colour bars and the top view's arrow labels lie inside their figure and do not overlap,
-and the headline is above the fold.
+colour bars and the top view's arrow labels lie inside their figure and do not overlap, named ticks
+("W so far", "its split") do not run into each other (projected or not), no button's text
+runs out of its button, and the headline is above the fold.
 
 Sizes are read in the page: the Bokeh views' boxes (``Bokeh.index``), their frames (the
 drawn plot area) and their annotations' boxes.
@@ -64,9 +65,46 @@ _FIGURES_JS = """() => {
         labels.push({text: data.text[i], box: [left, top, w, h]});
       }
     }
+    // Named ticks under the plot ("W so far", "its split"): their text boxes, across.
+    const ticks = [];
+    for (const axis of m.below) {
+      const names = axis.major_label_overrides, fixed = axis.ticker && axis.ticker.ticks;
+      if (!names || !fixed || !(names instanceof Map ? names.size : Object.keys(names).length))
+        continue;
+      const name = (t) => names instanceof Map ? (names.get(t) ?? names.get(String(t))) : names[t];
+      const size = parseFloat(axis.major_label_text_font_size.value ?? axis.major_label_text_font_size);
+      ctx.font = `${size}px sans-serif`;
+      for (const t of fixed) {
+        const text = name(t);
+        if (text == null) continue;
+        const w = ctx.measureText(text).width, x = v.frame.x_scale.compute(t);
+        ticks.push({text, box: [x - w / 2, 0, w, size]});
+      }
+    }
     out[m.name] = {page: [r.left, r.top, r.width, r.height],
-                   frame: [f.left, f.top, f.width, f.height], parts, labels};
+                   frame: [f.left, f.top, f.width, f.height], parts, labels, ticks};
   }
+  return out;
+}"""
+
+
+# Visible buttons whose text is wider than the button, or that are wider than the box the
+# layout gave them (drawn over their neighbour): [text, text or button width, box width].
+_CUT_BUTTONS_JS = """() => {
+  const out = [];
+  const walk = (root) => {
+    for (const el of root.querySelectorAll(".bk-btn")) {
+      if (!el.checkVisibility()) continue;
+      const host = el.getRootNode().host, r = el.getBoundingClientRect();
+      const box = host ? host.getBoundingClientRect() : r;
+      if (el.scrollWidth > el.clientWidth + 1)
+        out.push([el.textContent.trim(), el.scrollWidth, el.clientWidth]);
+      else if (r.right > box.right + 1)
+        out.push([el.textContent.trim(), r.width, box.width]);
+    }
+    for (const el of root.querySelectorAll("*")) if (el.shadowRoot) walk(el.shadowRoot);
+  };
+  walk(document);
   return out;
 }"""
 
@@ -149,6 +187,15 @@ def test_projector_mode_helps_every_tab(screen, app_url, tab):
             for b in labels[i + 1:]:
                 assert not _overlap(a["box"], b["box"]), \
                     f"{tab}: {name}'s labels {a['text']!r} and {b['text']!r} overlap: {a}, {b}"
+    for mode, shown in (("projected", figures), ("normal", normal.get(tab, {}))):
+        for name, fig in shown.items():
+            ticks = fig["ticks"]
+            for i, a in enumerate(ticks):
+                for b in ticks[i + 1:]:
+                    assert not _overlap(a["box"], b["box"]), \
+                        f"{tab} ({mode}): {name}'s ticks {a['text']!r} and {b['text']!r} overlap"
+    cut = page.evaluate(_CUT_BUTTONS_JS)
+    assert not cut, f"{tab}: button text runs out of its button projected: {cut}"
 
 
 def test_projected_design_field_captions_fit_their_fields(screen, app_url):
