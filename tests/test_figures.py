@@ -158,3 +158,30 @@ def test_arrow_labels_part_and_stay_in_view():
     edge = _arrow_labels([((1.0, 1.9), (1.9, 1.9), SLAB_COLOR, "slab V₀"),
                           ((-1.0, -1.9), (-1.9, -1.9), FORCE_COLOR, "friction")], *view)
     assert edge["align"] == ["right", "left"] and edge["baseline"] == ["top", "bottom"]
+
+
+@pytest.mark.parametrize("projector", [False, True])
+def test_styling_keeps_a_horizontal_colour_scale_long_and_a_frameless_key_frameless(projector):
+    """The Array tab's colour scale lies across its own figure: styling (projector or
+    not) sets its thickness, never its length, and adds no frame around the empty plot
+    area under it; a vertical colour bar beside a plot gets the thickness as its width."""
+    from bokeh.models import ColorBar, LinearColorMapper
+
+    from app.figures.array_key import colorbar_figure
+    from app.figures.common import new_figure, style
+
+    key = colorbar_figure(LinearColorMapper(palette=["#000000", "#ffffff"], low=-90, high=90),
+                          400)
+    bar = key.select_one({"type": ColorBar})
+    length = bar.width
+    style(key, projector)
+    assert bar.width == length >= 120
+    assert bar.height == (14 if projector else 8)
+    assert key.outline_line_color is None
+
+    fig = new_figure("with_bar", "t", 300, 300)
+    side = ColorBar(color_mapper=LinearColorMapper(palette=["#000000", "#ffffff"]))
+    fig.add_layout(side, "right")
+    style(fig, projector)
+    assert side.width == (14 if projector else 8)
+    assert fig.outline_line_color is not None

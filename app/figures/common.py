@@ -250,8 +250,14 @@ def style(fig, projector: bool) -> None:
     for bar in (m for m in layouts if isinstance(m, ColorBar)):
         bar.major_label_text_font_size = tick
         bar.title_text_font_size = label
-        bar.width = 14 if projector else 8
-    fig.outline_line_color = BLACK if projector else "#dddddd"
+        # its thickness: a horizontal bar's length is its width (set by its figure)
+        thickness = 14 if projector else 8
+        if bar.orientation == "horizontal":
+            bar.height = thickness
+        else:
+            bar.width = thickness
+    if fig.outline_line_color is not None:  # a key drawn without a frame keeps none
+        fig.outline_line_color = BLACK if projector else "#dddddd"
 
 
 def legend_below(fig, spacing: int = 6) -> None:

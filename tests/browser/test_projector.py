@@ -2,7 +2,8 @@
 every tab, the page never scrolls sideways, the main figure is drawn at least as large as
 in normal mode, every figure's text is at least the projector minimum, legends, titles,
 colour bars and the top view's arrow labels lie inside their figure and do not overlap, named ticks
-("W so far", "its split") do not run into each other (projected or not), no button's text
+("W so far", "its split") do not run into each other and colour scales have a readable
+length (projected or not), no button's text
 runs out of its button, and the headline is above the fold.
 
 Sizes are read in the page: the Bokeh views' boxes (``Bokeh.index``), their frames (the
@@ -27,6 +28,8 @@ TABS = {"support": ("One support", "scene"), "array": ("Array", "array_top"),
         "load": ("Load", "load"), "equations": ("Equations", None),
         "design": ("Design", "design_map")}
 PROJECTOR_MIN_PX = MIN_TEXT_PX * PROJECTOR_SCALE
+#: A colour scale's length (px) at the least: a bar a reader can read colours off.
+MIN_COLOUR_SCALE_PX = 120
 
 # The visible figures: page box, frame (drawn plot area, in the figure's canvas), and the
 # boxes of their legends, titles and colour bars; the text boxes of the top view's arrow
@@ -47,8 +50,15 @@ _FIGURES_JS = """() => {
       if (!["Legend", "Title", "ColorBar"].includes(model.type) || !view.bbox) continue;
       const b = view.bbox;
       const empty = model.type === "Legend" && !model.items.some((i) => i.visible !== false);
-      if (b.width > 0 && b.height > 0 && !empty)
-        parts.push({what: model.type, box: [b.left, b.top, b.width, b.height]});
+      if (!(b.width > 0 && b.height > 0 && !empty)) continue;
+      const part = {what: model.type, box: [b.left, b.top, b.width, b.height]};
+      if (model.type === "ColorBar") {  // its drawn length: its panel's, or the one it was given
+        const across = model.orientation === "horizontal" ||
+          (model.orientation === "auto" && b.width > b.height);
+        const given = across ? model.width : model.height;
+        part.length = typeof given === "number" ? given : across ? b.width : b.height;
+      }
+      parts.push(part);
     }
     const labels = [];
     for (const a of m.center) {
@@ -189,6 +199,9 @@ def test_projector_mode_helps_every_tab(screen, app_url, tab):
                     f"{tab}: {name}'s labels {a['text']!r} and {b['text']!r} overlap: {a}, {b}"
     for mode, shown in (("projected", figures), ("normal", normal.get(tab, {}))):
         for name, fig in shown.items():
+            for bar in (p for p in fig["parts"] if p["what"] == "ColorBar"):
+                assert bar["length"] >= MIN_COLOUR_SCALE_PX, \
+                    f"{tab} ({mode}): {name}'s colour scale is {bar['length']:.0f} px long"
             ticks = fig["ticks"]
             for i, a in enumerate(ticks):
                 for b in ticks[i + 1:]:
