@@ -117,7 +117,7 @@ class DesignView(pn.viewable.Viewer):
             s.param.dist_family, options=FAMILY_LABELS, **caption("Orientations"), width=96,
             margin=(0, 3), css_classes=["ctl-dist_family"])
         self.angle = pn.widgets.FloatInput.from_param(
-            s.param.dist_deg, **caption("θ₀, mean [°]"), step=5, width=80, margin=(0, 3),
+            s.param.dist_deg, **caption("θ₀, mean [°]"), step=5, width=92, margin=(0, 3),
             css_classes=["ctl-dist_deg"])
         self.kappa = pn.widgets.FloatInput.from_param(
             s.param.dist_kappa, **caption("κ"), step=0.5, width=58, margin=(0, 3),
@@ -127,13 +127,13 @@ class DesignView(pn.viewable.Viewer):
             css_classes=["ctl-dist_psi"])
         # A second component, mixed in with weight w (0: none).
         self.mix = pn.widgets.FloatInput.from_param(
-            s.param.mix_weight, **caption("+ weight w"), step=0.1, width=70, margin=(0, 3),
+            s.param.mix_weight, **caption("weight w"), step=0.1, width=74, margin=(0, 3),
             css_classes=["ctl-mix_weight"])
         self.family2 = pn.widgets.Select.from_param(
             s.param.dist2_family, options=FAMILY_LABELS, **caption("mixed with"), width=96,
             margin=(0, 3), css_classes=["ctl-dist2_family"])
         self.angle2 = pn.widgets.FloatInput.from_param(
-            s.param.dist2_deg, **caption("θ₀, mean [°]"), step=5, width=80, margin=(0, 3),
+            s.param.dist2_deg, **caption("θ₀, mean [°]"), step=5, width=92, margin=(0, 3),
             css_classes=["ctl-dist2_deg"])
         self.kappa2 = pn.widgets.FloatInput.from_param(
             s.param.dist2_kappa, **caption("κ"), step=0.5, width=58, margin=(0, 3),

@@ -211,11 +211,13 @@ def test_projector_mode_helps_every_tab(screen, app_url, tab):
     assert not cut, f"{tab}: button text runs out of its button projected: {cut}"
 
 
-def test_projected_design_field_captions_fit_their_fields(screen, app_url):
-    """Projected, the distribution editor's captions (larger text) stay within their own
-    field: none runs into the next one ("θ₀, mean [°]" over "κ")."""
+@pytest.mark.parametrize("mode", ["normal", "projected"])
+def test_design_field_captions_fit_their_fields(screen, app_url, mode):
+    """The distribution editor's captions, with their help marks, stay within their own
+    field, projected (larger text) or not: none runs into the next one ("θ₀, mean [°] ?"
+    over "κ")."""
     size, _normal, page = screen
-    _show(page, f"{app_url}?projector=1", "design")
+    _show(page, f"{app_url}?projector=1" if mode == "projected" else app_url, "design")
     page.locator(".ctl-dist_deg").first.scroll_into_view_if_needed()
     page.wait_for_timeout(300)
     boxes = page.evaluate("""(names) => {
@@ -240,4 +242,4 @@ def test_projected_design_field_captions_fit_their_fields(screen, app_url):
     assert len(boxes) >= 8, f"the distribution editor's fields were not found: {boxes}"
     for b in boxes:
         assert _inside(b["caption"], b["field"], slack=2.0), \
-            f"{size}: the caption {b['text']!r} runs out of its field: {b}"
+            f"{size} ({mode}): the caption {b['text']!r} runs out of its field: {b}"
