@@ -52,7 +52,7 @@ def map_block(state) -> str:
     where the page takes it, else an ``n`` x ``n`` log grid as ``worker.compute_map``."""
     F_N, beta = float(state.F_N), state.array_beta
     column = map_column(state.map_quantity, state.average)
-    what = map_title(state.map_quantity, None, state.average)
+    what = " ".join(map_title(state.map_quantity, None, state.average).split())  # one line
     shipped = worker.shipped_load(F_N) if beta == "self" else None
     if shipped is not None:
         load = "" if shipped == 1.0 else f"F_N={source(shipped)}"

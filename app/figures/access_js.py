@@ -125,10 +125,10 @@ function nameFigures(roots) {
     for (const m of doc.all_models) {
       if (!m.name || !m.title || typeof m.title.text !== "string" || !m.title.text) continue;
       const words = window.describeFigure ? window.describeFigure(m.name) : null;
+      const name = m.title.text.replace(/\\s+/g, " ");  // a title of two lines, one name
       for (const el of hosts.filter((h) => h.classList.contains("figure-" + m.name))) {
         if (el.getAttribute("role") !== "figure") el.setAttribute("role", "figure");
-        if (el.getAttribute("aria-label") !== m.title.text)
-          el.setAttribute("aria-label", m.title.text);
+        if (el.getAttribute("aria-label") !== name) el.setAttribute("aria-label", name);
         if (words && el.getAttribute("aria-description") !== words)
           el.setAttribute("aria-description", words);
       }

@@ -109,7 +109,8 @@ def array_scene(motion, player, width: int = 1000, panel_height: int = 220,
                          f"{motion.n_frames}; make the player with n_frames=motion.n_frames")
     L0 = motion.params.L0
     xr, yr, height = _ranges(motion, width)
-    title = (f"TOP VIEW: the slab slides over {motion.n_supports} supports "
+    # Two lines: one of ~90 characters runs out of a phone's figure.
+    title = (f"TOP VIEW: the slab slides over {motion.n_supports} supports\n"
              f"({motion.orientation} θ₀, k_r = {motion.params.k_r:g}, "
              f"k_θ = {motion.params.k_theta:g}, F_N = {motion.params.F_N:g})")
     fig = new_figure("array_top", title, width, height, x_range=xr, y_range=yr,
@@ -263,7 +264,7 @@ def _panel(motion, width, height):
     array model's values and the steady window."""
     T = float(motion.t[-1])
     m = motion.model
-    fig = new_figure("array_live_panel", "Live: supports in contact N_c/N_c0 (β = N_c0/N_c) "
+    fig = new_figure("array_live_panel", "Live: supports in contact N_c/N_c0 (β = N_c0/N_c)\n"
                      "and the force on the slab F_T,x/(μ₀F_N)", width, height,
                      x_range=Range1d(0, float(motion.t_start.max()) + 0.5),
                      x_axis_label="τ (slab travel / r₀)", y_axis_label="ratio to rigid supports")

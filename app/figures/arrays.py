@@ -27,12 +27,13 @@ AVERAGE_COLUMNS = {"paper": "FTx_over_mu0FN", "duration": "FTx_over_mu0FN_durati
 
 
 def map_title(quantity: str, regime_map=None, average: str = "paper") -> str:
-    """The map's title: its quantity (and average), and the load of the map on show."""
+    """The map's title: its quantity (and average), and the load of the map on show; the
+    average and the load on a second line (one line runs out of a phone's figure)."""
     F_N = (regime_map.metadata.get("F_N", 1.0) if regime_map is not None else None)
-    load = f", F_N = {F_N:g}" if F_N is not None else ""
-    avg = (f", {'duration-weighted' if average == 'duration' else 'Eq. 10'} average"
-           if quantity == "5a" else "")
-    return f"{MAP_QUANTITIES[quantity][1]}{avg}{load} (Fig. {quantity})"
+    parts = ([f"{'duration-weighted' if average == 'duration' else 'Eq. 10'} average"]
+             if quantity == "5a" else []) + ([f"F_N = {F_N:g}"] if F_N is not None else [])
+    second = f"\n{', '.join(parts)}" if parts else ""
+    return f"{MAP_QUANTITIES[quantity][1]} (Fig. {quantity}){second}"
 K_AXIS = (0.008, 3.8)
 
 

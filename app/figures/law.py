@@ -72,7 +72,7 @@ def law_data(law, fit=None, curve=None, V0: float | None = None):
 
 def law_figure(width: int = 310, height: int = 300):
     """Fig. 3 in physical units, empty: the law, a fit's band, measured points, V0."""
-    fig = new_figure("design_law", "Friction law μ(v), Eq. (4) (Fig. 3)", width, height,
+    fig = new_figure("design_law", "Friction law μ(v) (Eq. 4)", width, height,
                      x_axis_type="log", x_axis_label="sliding speed v [m/s]",
                      y_axis_label="friction coefficient μ", x_range=Range1d(1e-6, 1.0),
                      y_range=Range1d(-0.06, 1.5))

@@ -107,7 +107,7 @@ def _speed_axis(fig) -> None:
 
 def speeds_figure(width: int = 310, height: int = 300):
     """F_T,x/F_N and mu against V0, empty (see the module docstring)."""
-    fig = new_figure("design_speeds", "Friction against sliding speed", width, height,
+    fig = new_figure("design_speeds", "Friction vs sliding speed", width, height,
                      x_axis_type="log", x_axis_label="sliding speed V₀ [m/s]",
                      y_axis_label="friction coefficient F_T,x/F_N, μ",
                      x_range=Range1d(1e-3, 1.0), y_range=Range1d(0.0, 1.5))

@@ -46,7 +46,8 @@ class PageAccess(JSComponent):
       const out = {};
       for (const doc of (window.Bokeh ? Bokeh.documents : []))
         for (const m of doc.all_models)
-          if (m.name && m.title && typeof m.title.text === "string") out[m.name] = m.title.text;
+          if (m.name && m.title && typeof m.title.text === "string")
+            out[m.name] = m.title.text.replace(/\\s+/g, " ");  // a title of two lines, one name
       return out;
     }
 

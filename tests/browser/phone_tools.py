@@ -95,3 +95,30 @@ _CANVAS_TEXT_JS = """() => {
 def canvas_text_sizes(page) -> list[dict]:
     """[{figure, what, size}] of the text on the visible figures' canvases."""
     return page.evaluate(_CANVAS_TEXT_JS)
+
+
+# Visible figures whose title (its longest line, measured in its font) is wider than the
+# figure: [name, title, the title's right end, the figure's width] (CSS px).
+_CUT_TITLES_JS = """() => {
+  const out = [], ctx = document.createElement("canvas").getContext("2d");
+  const value = (p) => (p && typeof p === "object" && "value" in p) ? p.value : p;
+  for (const m of Bokeh.documents[0].all_models) {
+    if (!("x_range" in m) || !("renderers" in m) || !m.title || !m.title.text) continue;
+    const v = Bokeh.index.find_one(m);
+    if (!v || !v.el.checkVisibility({visibilityProperty: true, opacityProperty: true})) continue;
+    const r = v.el.getBoundingClientRect();
+    if (r.width < 1 || r.height < 1) continue;
+    const t = m.title, view = v.renderer_views.get(t);
+    ctx.font = `${value(t.text_font_style)} ${value(t.text_font_size)} ${value(t.text_font)}`;
+    const width = Math.max(...String(t.text).split("\\n").map((l) => ctx.measureText(l).width));
+    const left = view && view.bbox ? view.bbox.left : 0;
+    if (left + width > r.width + 1)
+      out.push([m.name, t.text, Math.round(left + width), Math.round(r.width)]);
+  }
+  return out;
+}"""
+
+
+def cut_titles(page) -> list:
+    """The visible figures whose title runs out of the figure (``_CUT_TITLES_JS``)."""
+    return page.evaluate(_CUT_TITLES_JS)

@@ -57,7 +57,7 @@ def test_every_slider_button_and_plot_has_a_name_and_the_plots_words_follow_the_
 
 #: The Design tab's figures (their titles) and what their words must hold.
 DESIGN_FIGURES = {"The design on Fig. 5a": "star at k̃_r", "Fig. 11a": "Polar diagram",
-                  "Friction law": "At the design's V₀", "Friction against sliding speed":
+                  "Friction law": "At the design's V₀", "Friction vs sliding speed":
                   "Dashed: the flat material's μ(V₀)"}
 
 

@@ -41,6 +41,7 @@ def test_every_tab_fits_a_phone(browser, app_url, tab):
         assert page.evaluate("() => window.innerWidth") == ph.PHONE["viewport"]["width"], \
             "the phone did not lay the page out at its own width"
         _check(ph.scan(page), ph.canvas_text_sizes(page), f"{tab} tab")
+        assert ph.cut_titles(page) == [], f"{tab} tab: titles cut off: {ph.cut_titles(page)}"
         if tab == "support":  # the controls, opened
             page.locator(".sidebar").get_by_text("Controls", exact=True).first.click()
             pt.wait_for(page, lambda: page.locator(".ctl-k_r .noUi-handle").is_visible(),

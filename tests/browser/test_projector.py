@@ -1,10 +1,10 @@
 """Projector mode as a class sees it: at 1280x720 and 1920x1080 with ``?projector=1``, on
 every tab, the page never scrolls sideways, the main figure is drawn at least as large as
 in normal mode, every figure's text is at least the projector minimum, legends, titles,
-colour bars and the top view's arrow labels lie inside their figure and do not overlap, named ticks
-("W so far", "its split") do not run into each other and colour scales have a readable
-length (projected or not), no button's text
-runs out of its button, and the headline is above the fold.
+colour bars and the top view's arrow labels lie inside their figure and do not overlap,
+no figure's title and no button's caption runs out of its box, and the headline is above
+the fold. Projected or not, named ticks ("W so far", "its split") do not run into each
+other and colour scales have a readable length.
 
 Sizes are read in the page: the Bokeh views' boxes (``Bokeh.index``), their frames (the
 drawn plot area) and their annotations' boxes.
@@ -207,6 +207,8 @@ def test_projector_mode_helps_every_tab(screen, app_url, tab):
                 for b in ticks[i + 1:]:
                     assert not _overlap(a["box"], b["box"]), \
                         f"{tab} ({mode}): {name}'s ticks {a['text']!r} and {b['text']!r} overlap"
+    titles = phone_tools.cut_titles(page)
+    assert not titles, f"{tab}: figure titles run out of their figure projected: {titles}"
     cut = page.evaluate(_CUT_BUTTONS_JS)
     assert not cut, f"{tab}: button text runs out of its button projected: {cut}"
 
