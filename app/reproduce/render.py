@@ -103,10 +103,11 @@ def _png_metadata(path: Path, title: str) -> None:
 
 def _open(page, html) -> None:
     page.goto(Path(html).resolve().as_uri())
+    # BokehJS calls its document idle once every root's view has been laid out and painted.
     page.wait_for_function("() => window.Bokeh && Bokeh.documents.length > 0 && "
                            "document.querySelector('.bk-Figure, .bk-Row, "
-                           ".bk-Column, .bk-GridPlot') !== null", timeout=30_000)
-    page.wait_for_timeout(300)  # the canvas paints after the layout settles
+                           ".bk-Column, .bk-GridPlot') !== null && "
+                           "Bokeh.documents[0].is_idle", timeout=30_000)
 
 
 def _settled_extent(page, timeout_ms: int = 10_000) -> tuple[float, float]:

@@ -80,6 +80,32 @@ def _figures(page, names) -> dict:
     return page.evaluate(_FIGURE_BOXES_JS, list(names))
 
 
+# Resolves once the figures' boxes and the controls' box have not moved for ``quiet`` ms
+# (read on every animation frame); rejects after ``timeout`` ms.
+_LAYOUT_AT_REST_JS = """([names, quiet, timeout]) => new Promise((resolve, reject) => {
+  const figures = """ + _FIGURE_BOXES_JS + """;
+  const boxes = """ + _BOXES_JS + """;
+  const read = () => JSON.stringify([figures(names), boxes(".sidebar")]);
+  let last = read(), since = performance.now();
+  const start = since;
+  const tick = () => {
+    const now = read(), t = performance.now();
+    if (now !== last) { last = now; since = t; }
+    if (t - since >= quiet) resolve(true);
+    else if (t - start >= timeout) reject(new Error(`the layout kept moving: ${now}`));
+    else requestAnimationFrame(tick);
+  };
+  requestAnimationFrame(tick);
+})"""
+
+
+def _layout_at_rest(page, names, quiet_ms: int = 300, timeout_ms: int = 15_000) -> None:
+    """Wait until the figures ``names`` and the controls have not moved for ``quiet_ms``:
+    the page has laid itself out again after the controls opened or folded, or the window
+    changed size."""
+    page.evaluate(_LAYOUT_AT_REST_JS, [list(names), quiet_ms, timeout_ms])
+
+
 def _visible_area(box, viewport) -> float:
     left, top, width, height = box
     w = max(0.0, min(left + width, viewport["width"]) - max(left, 0.0))
@@ -133,7 +159,7 @@ def test_projector_mode_at_1920_fills_the_screen_with_figures(browser, app_url, 
         boxes, folded = covered()
         page.locator(".sidebar").get_by_text("Controls", exact=True).first.click()
         pt.wait_for(page, lambda: _controls_width(page) > 200, what="the controls to open")
-        page.wait_for_timeout(800)
+        _layout_at_rest(page, names)
         _, area = covered()
         # The room left to figures: beside the controls and the "why" column (which stays
         # beside the plots on a screen this wide).
@@ -148,7 +174,7 @@ def test_projector_mode_at_1920_fills_the_screen_with_figures(browser, app_url, 
         page.locator(".sidebar").get_by_text("Controls", exact=True).first.click()
         pt.wait_for(page, lambda: _controls_width(page) < 200, what="the controls to fold")
         page.set_viewport_size({"width": 1280, "height": 720})
-        page.wait_for_timeout(800)
+        _layout_at_rest(page, names)
         small = _figures(page, names)
         for name in names:
             assert boxes[name][2] * boxes[name][3] > 1.5 * small[name][2] * small[name][3], \
@@ -369,8 +395,10 @@ def test_screenshots_of_every_tab(browser, app_url, size):
                 page.mouse.move(width / 2, height - 2)  # no tooltip over the tab bar
                 for name in names:
                     pt.wait_for_plot(page, name)
+                if tab == "equations":  # typeset by MathJax once shown
+                    page.locator(".equations mjx-container").first.wait_for(state="visible")
                 pt.settle(page)
-                page.wait_for_timeout(500)
+                pt.next_paint(page)
                 mode = "projector" if projector else "normal"
                 saved.append(pt.screenshot(page, folder / f"{tab}_{mode}_{size}.png",
                                            full_page=False))

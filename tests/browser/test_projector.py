@@ -141,6 +141,27 @@ def _show(page, url: str, tab: str) -> dict:
     return page.evaluate(_FIGURES_JS)
 
 
+class Shown:
+    """The module's page of a screen size, opened on the address and tab a test asks for.
+    The tests that only read it leave it as it was opened: a test asking for the address
+    and tab it shows already reads it as it is instead of opening it again."""
+
+    def __init__(self, page):
+        self.page, self.shown, self.figures = page, None, None
+
+    def show(self, url: str, tab: str) -> dict:
+        """The page opened on ``url`` at ``tab``; its visible figures at rest."""
+        if (url, tab) != self.shown:
+            self.shown = None  # an open that fails leaves nothing taken as shown
+            self.figures = _show(self.page, url, tab)
+            self.shown = (url, tab)
+        return self.figures
+
+    def changed(self) -> None:
+        """The page was changed (scrolled, clicked): it is opened again when next asked."""
+        self.shown = None
+
+
 @pytest.fixture(scope="module", params=list(SCREENS))
 def screen(request, browser, app_url):
     """Per screen size: every tab's figures in normal mode, and a projector-mode page."""
@@ -151,14 +172,14 @@ def screen(request, browser, app_url):
     normal.close()
     projected = browser.new_context(viewport=size)
     projected.set_default_timeout(60_000)
-    yield size, measured, projected.new_page()
+    yield size, measured, Shown(projected.new_page())
     projected.close()
 
 
 @pytest.mark.parametrize("tab", list(TABS))
 def test_projector_mode_helps_every_tab(screen, app_url, tab):
-    size, normal, page = screen
-    figures = _show(page, f"{app_url}?projector=1", tab)
+    size, normal, shown = screen
+    figures, page = shown.show(f"{app_url}?projector=1", tab), shown.page
     found = phone_tools.scan(page, min_text=0, min_target=0)
     assert found["scroll_width"] <= size["width"], \
         f"{tab}: the page scrolls sideways ({found['scroll_width']} > {size['width']} px)"
@@ -213,13 +234,16 @@ def test_projector_mode_helps_every_tab(screen, app_url, tab):
     assert not cut, f"{tab}: button text runs out of its button projected: {cut}"
 
 
-@pytest.mark.parametrize("mode", ["normal", "projected"])
+# Projected first: the projected Design page the tab's test (just before) opened is read.
+@pytest.mark.parametrize("mode", ["projected", "normal"])
 def test_design_field_captions_fit_their_fields(screen, app_url, mode):
     """The distribution editor's captions, with their help marks, stay within their own
     field, projected (larger text) or not: none runs into the next one ("θ₀, mean [°] ?"
     over "κ")."""
-    size, _normal, page = screen
-    _show(page, f"{app_url}?projector=1" if mode == "projected" else app_url, "design")
+    size, _normal, shown = screen
+    shown.show(f"{app_url}?projector=1" if mode == "projected" else app_url, "design")
+    page = shown.page
+    shown.changed()  # scrolled below
     page.locator(".ctl-dist_deg").first.scroll_into_view_if_needed()
     page.wait_for_timeout(300)
     boxes = page.evaluate("""(names) => {
