@@ -245,7 +245,8 @@ def test_svg_parses_and_holds_the_figure(vector, key):
     assert plots
     for plot in plots:
         if plot.title is not None and plot.title.text:
-            assert plot.title.text in texts, (key, plot.title.text)
+            for line in plot.title.text.split("\n"):  # a title of two lines: two texts
+                assert line in texts, (key, plot.title.text)
         for axis in (*plot.xaxis, *plot.yaxis):
             if axis.axis_label and "$" not in str(axis.axis_label):
                 assert str(axis.axis_label) in texts, (key, axis.axis_label)
