@@ -139,14 +139,6 @@ def settle(page, quiet_ms: int = 600, timeout_ms: float = 30_000,
         })""", [quiet_ms, timeout_ms, names or []])
 
 
-def next_paint(page) -> None:
-    """Wait until the browser has painted a frame from now on (two animation frames: the
-    one that draws what is pending and the one after it), e.g. before a screenshot of a
-    page at rest (``settle``)."""
-    page.evaluate("() => new Promise((resolve) => "
-                  "requestAnimationFrame(() => requestAnimationFrame(() => resolve(true))))")
-
-
 def data_sources(page, names: list[str] | None = None) -> dict:
     """The fingerprints of the page's ColumnDataSources (all, or those with ``names``)."""
     return page.evaluate("(names) => window.__mpFingerprint(names)", names or [])

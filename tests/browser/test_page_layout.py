@@ -17,6 +17,7 @@ from urllib.parse import parse_qs, urlsplit
 import pytest
 
 from . import page_tools as pt
+from . import still
 
 pytestmark = [pytest.mark.browser, pytest.mark.timeout(240)]
 
@@ -80,30 +81,13 @@ def _figures(page, names) -> dict:
     return page.evaluate(_FIGURE_BOXES_JS, list(names))
 
 
-# Resolves once the figures' boxes and the controls' box have not moved for ``quiet`` ms
-# (read on every animation frame); rejects after ``timeout`` ms.
-_LAYOUT_AT_REST_JS = """([names, quiet, timeout]) => new Promise((resolve, reject) => {
-  const figures = """ + _FIGURE_BOXES_JS + """;
-  const boxes = """ + _BOXES_JS + """;
-  const read = () => JSON.stringify([figures(names), boxes(".sidebar")]);
-  let last = read(), since = performance.now();
-  const start = since;
-  const tick = () => {
-    const now = read(), t = performance.now();
-    if (now !== last) { last = now; since = t; }
-    if (t - since >= quiet) resolve(true);
-    else if (t - start >= timeout) reject(new Error(`the layout kept moving: ${now}`));
-    else requestAnimationFrame(tick);
-  };
-  requestAnimationFrame(tick);
-})"""
-
-
 def _layout_at_rest(page, names, quiet_ms: int = 300, timeout_ms: int = 15_000) -> None:
     """Wait until the figures ``names`` and the controls have not moved for ``quiet_ms``:
     the page has laid itself out again after the controls opened or folded, or the window
     changed size."""
-    page.evaluate(_LAYOUT_AT_REST_JS, [list(names), quiet_ms, timeout_ms])
+    read = ("() => JSON.stringify([(" + _FIGURE_BOXES_JS + f")({list(names)!r}), ("
+            + _BOXES_JS + ')(".sidebar")])')
+    still.wait_until_still(page, read, quiet_ms, timeout_ms)
 
 
 def _visible_area(box, viewport) -> float:
@@ -398,7 +382,7 @@ def test_screenshots_of_every_tab(browser, app_url, size):
                 if tab == "equations":  # typeset by MathJax once shown
                     page.locator(".equations mjx-container").first.wait_for(state="visible")
                 pt.settle(page)
-                pt.next_paint(page)
+                still.next_paint(page)
                 mode = "projector" if projector else "normal"
                 saved.append(pt.screenshot(page, folder / f"{tab}_{mode}_{size}.png",
                                            full_page=False))
