@@ -37,7 +37,8 @@ from .design_readouts import DesignReadouts
 from .design_speeds import FrictionSpeedsView
 from .design_upload import HistogramUpload
 from .design_words import STATUS_WORDS, design_map_description, design_polar_description
-from .layout import FIT_TEXT_CSS, INPUT_CSS, PHONE, TOP, WIDE, grid_css, mode_classes, projector_grid
+from .layout import (FIT_TEXT_CSS, INPUT_CSS, PHONE, TOP, WIDE, grid_css, mode_classes,
+                     projector_grid)
 from .locked import locked as _locked
 from .widgets import caption, look
 
