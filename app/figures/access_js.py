@@ -116,7 +116,13 @@ function nameHandles(root) {
 }
 """
 
-FIGURE_NAMES_JS = """
+#: ``figureName(title)``: a figure's accessible name, its title's text on one line (a
+#: title of two lines is one name).
+FIGURE_NAME_JS = """
+function figureName(title) { return title.text.replace(/\\s+/g, " "); }
+"""
+
+FIGURE_NAMES_JS = FIGURE_NAME_JS + """
 function nameFigures(roots) {
   if (!window.Bokeh) return;
   const hosts = [];
@@ -125,7 +131,7 @@ function nameFigures(roots) {
     for (const m of doc.all_models) {
       if (!m.name || !m.title || typeof m.title.text !== "string" || !m.title.text) continue;
       const words = window.describeFigure ? window.describeFigure(m.name) : null;
-      const name = m.title.text.replace(/\\s+/g, " ");  // a title of two lines, one name
+      const name = figureName(m.title);
       for (const el of hosts.filter((h) => h.classList.contains("figure-" + m.name))) {
         if (el.getAttribute("role") !== "figure") el.setAttribute("role", "figure");
         if (el.getAttribute("aria-label") !== name) el.setAttribute("aria-label", name);

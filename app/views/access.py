@@ -29,7 +29,8 @@ from __future__ import annotations
 import param
 from panel.custom import JSComponent
 
-from ..figures.access_js import HANDLE_NAMES_JS, WATCH_ROOTS_JS, figure_classes
+from ..figures.access_js import (FIGURE_NAME_JS, HANDLE_NAMES_JS, WATCH_ROOTS_JS,
+                                 figure_classes)
 from .layout import ACCESS_CSS, SR_ONLY_CSS
 
 __all__ = ["PageAccess", "LiveDescription", "figure_classes"]
@@ -40,14 +41,14 @@ class PageAccess(JSComponent):
 
     css = param.String(default=ACCESS_CSS, doc="stylesheet given to every shadow root")
 
-    _esm = WATCH_ROOTS_JS + HANDLE_NAMES_JS + """
+    _esm = WATCH_ROOTS_JS + HANDLE_NAMES_JS + FIGURE_NAME_JS + """
     // Bokeh figures' titles by name (a figure's holder has the class "figure-<name>").
     function titles() {
       const out = {};
       for (const doc of (window.Bokeh ? Bokeh.documents : []))
         for (const m of doc.all_models)
           if (m.name && m.title && typeof m.title.text === "string")
-            out[m.name] = m.title.text.replace(/\\s+/g, " ");  // a title of two lines, one name
+            out[m.name] = figureName(m.title);
       return out;
     }
 

@@ -218,8 +218,8 @@ def test_projector_mode_helps_every_tab(screen, app_url, tab):
             for b in labels[i + 1:]:
                 assert not _overlap(a["box"], b["box"]), \
                     f"{tab}: {name}'s labels {a['text']!r} and {b['text']!r} overlap: {a}, {b}"
-    for mode, shown in (("projected", figures), ("normal", normal.get(tab, {}))):
-        for name, fig in shown.items():
+    for mode, drawn in (("projected", figures), ("normal", normal.get(tab, {}))):
+        for name, fig in drawn.items():
             for bar in (p for p in fig["parts"] if p["what"] == "ColorBar"):
                 assert bar["length"] >= MIN_COLOUR_SCALE_PX, \
                     f"{tab} ({mode}): {name}'s colour scale is {bar['length']:.0f} px long"
