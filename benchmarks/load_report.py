@@ -44,6 +44,9 @@ def markdown(r: dict) -> str:
     lines = ["# Dashboard load test", "",
              f"{s['sessions']} sessions against one `panel serve app` on {s['cpus']} cores, "
              "in rounds of two profiles:", ""]
+    if s.get("replica"):
+        lines[-1:-1] = [f"The clients' copies of the page: **{s['replica']}**, "
+                        f"{s['replica_description']}.", ""]
     lines += [f"- **{name}**: {text}." for name, text in s["profile_descriptions"].items()]
     lines += ["", "| round | update latency | n | p50 ms | p95 ms | max ms |",
               "|---|---|---:|---:|---:|---:|"]
@@ -77,7 +80,11 @@ def markdown(r: dict) -> str:
             f"CPU while moving: server process {cpu['server']:.0f} s, "
             f"workers {cpu['workers']:.0f} s ({1e3 * cpu['server'] / n_updates:.0f} and "
             f"{1e3 * cpu['workers'] / n_updates:.0f} ms per update), clients "
-            f"{rd['client_cpu_fraction']:.0%} of one core. Load average (1 min): "
+            f"{rd['client_cpu_fraction']:.0%} of one core"
+            + (f" (applying the server's patches {rd['client_apply_s']:.0f} s; their loop "
+               f"woke a 10 ms sleep late by p50 {rd['client_loop_lag']['p50_ms']:.0f}, p95 "
+               f"{rd['client_loop_lag']['p95_ms']:.0f} ms)" if "client_loop_lag" in rd else "")
+            + ". Load average (1 min): "
             f"{rd['load_average']['start'][0]:.1f} at the start, "
             f"{rd['load_average']['end'][0]:.1f} at the end.", ""]
     lines += ["| server RSS (MB) | server | workers | total | processes |",

@@ -93,10 +93,10 @@ from pathlib import Path
 import numpy as np
 
 from app.pages import RELEASE_DELAY_S
-from load_client import (CLASS_GAP_S, DRAG_PROBABILITY, PROFILES, THINK_S,
+from load_client import (CLASS_GAP_S, DRAG_PROBABILITY, PROFILES, REPLICAS, THINK_S,
                          UPDATE_TIMEOUT_S)
 from checkout import helper
-from load_class import drive
+from load_class import LoopLag, drive
 from load_profile import ServerProfiler, summarise
 from load_report import (TARGET_MEMORY_FACTOR, leak_bound, markdown,
                          memory_bound, targets)
@@ -143,7 +143,7 @@ def run(sessions: int = 30, duration: float = 60.0, out: Path | str = "bench-out
         browsers: int = 0, seed: int = 1, cleanup_timeout: float = 60.0,
         app_dir: str = "app", drag_duration: float | None = None,
         profiles: tuple[str, ...] = ("class", "drag"), profile: bool = False,
-        allocator: str = "image") -> dict:
+        allocator: str = "image", replica: str = "watched") -> dict:
     """Serve the app, drive a round of ``sessions`` per profile in ``profiles`` (the first
     for ``duration`` s, the next for ``drag_duration``, default ``duration``; one profile
     alone is repeated for a third of the time), and return (and write) the report."""
@@ -173,7 +173,8 @@ def run(sessions: int = 30, duration: float = 60.0, out: Path | str = "bench-out
         for i, (name, seconds) in enumerate(zip(profiles, durations)):
             rounds.append(_round(base, app, pid, baseline["processes"], log_path, name,
                                  sessions, seconds, seed + i,
-                                 cleanup_timeout, browsers=browsers if i == 0 else 0,
+                                 cleanup_timeout, replica=replica,
+                                 browsers=browsers if i == 0 else 0,
                                  browser=browser, profile_path=(
                                      out / "server-profile.txt" if profile and i == 0
                                      else None)))
@@ -207,6 +208,7 @@ def run(sessions: int = 30, duration: float = 60.0, out: Path | str = "bench-out
                      "class_gap_s": CLASS_GAP_S, "drag_probability": DRAG_PROBABILITY,
                      "update_timeout_s": UPDATE_TIMEOUT_S, "serve_args": list(SERVE_ARGS),
                      "allocator": allocator, "server_env": extra_env,
+                     "replica": replica, "replica_description": REPLICAS[replica],
                      "cpus": os.cpu_count()},
         "rounds": rounds,
         "errors": errors,
@@ -239,7 +241,7 @@ def run(sessions: int = 30, duration: float = 60.0, out: Path | str = "bench-out
 
 
 def _round(base, app, pid, processes, log_path, profile, sessions, duration, seed,
-           cleanup_timeout,
+           cleanup_timeout, replica="watched",
            browsers=0, browser=None, profile_path=None) -> dict:
     """One round: ``sessions`` open, move sliders in ``profile`` for ``duration`` s and
     close; the server's memory, CPU and log are read around it."""
@@ -256,6 +258,7 @@ def _round(base, app, pid, processes, log_path, profile, sessions, duration, see
     profiler = None
     closing: dict = {}
     moving: dict = {}
+    lag = LoopLag()
 
     def opened():
         nonlocal profiler
@@ -263,7 +266,7 @@ def _round(base, app, pid, processes, log_path, profile, sessions, duration, see
         if profile_path:  # the slider moves only, not the page opens
             profiler = ServerProfiler(pid, profile_path)
     driven, elapsed = asyncio.run(drive(
-        base, app, sessions, duration, seed, profile=profile,
+        base, app, sessions, duration, seed, profile=profile, replica=replica, lag=lag,
         on_open=opened,
         before_close=lambda: closing.update(
             offset=log_path.stat().st_size, load=os.getloadavg(),
@@ -310,6 +313,10 @@ def _round(base, app, pid, processes, log_path, profile, sessions, duration, see
         "memory_samples": sampler.samples,
         "load_average": {"start": load0, "end": closing["load"]},
         "client_cpu_fraction": closing["client"] / max(elapsed, 1e-9),
+        # The clients' event loop: how late it woke a 10 ms sleep while the sliders
+        # moved, and the CPU its copies of the page took to apply the server's patches.
+        "client_loop_lag": percentiles(lag.lags),
+        "client_apply_s": sum(s.apply_s for s in driven),
         "server_cpu_s": dict(zip(("server", "workers"), closing["cpu"].tolist())),
         "server_profile": profiled,
     }
@@ -336,6 +343,10 @@ def main(argv=None) -> int:
     ap.add_argument("--allocator", choices=("image", "python"), default="image",
                     help="the server's memory allocator: the image's settings (Dockerfile "
                          "ENV PYTHONMALLOC, MALLOC_ARENA_MAX; default) or CPython's own")
+    ap.add_argument("--replica", choices=sorted(REPLICAS), default="watched",
+                    help="how much of each server patch a client applies to its copy of "
+                         "the page: " + "; ".join(f"{k}: {v}" for k, v in REPLICAS.items())
+                         + " (default watched)")
     ap.add_argument("--out", default="bench-out", help="output folder (default bench-out)")
     args = ap.parse_args(argv)
     profiles = tuple(p.strip() for p in args.profiles.split(",") if p.strip())
@@ -349,7 +360,7 @@ def main(argv=None) -> int:
         args.drag_duration = args.drag_duration or 6.0
     report = run(args.sessions, args.duration, args.out, browsers=args.browsers, seed=args.seed,
                  app_dir=args.app, drag_duration=args.drag_duration, profiles=profiles,
-                 profile=args.profile, allocator=args.allocator)
+                 profile=args.profile, allocator=args.allocator, replica=args.replica)
     print(markdown(report))
     return 0 if report["passed"] else 1
 

@@ -1,0 +1,57 @@
+"""The load test's browser stand-in (``benchmarks/load_client.py``): how much of the
+server's patches its copy of the page applies (``REPLICAS``)."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture
+def lc(monkeypatch):
+    monkeypatch.syspath_prepend(str(ROOT / "benchmarks"))
+    import load_client
+
+    return load_client
+
+
+def _patch(lc, replica: str):
+    """A client's copy of a two-text page, and the server's patch changing both texts."""
+    from bokeh.document import Document
+    from bokeh.models import Div
+
+    server = Document()
+    head, other = Div(text="θ₀ = 90°"), Div(text="unchanged")
+    server.add_root(head)
+    server.add_root(other)
+    client = Document.from_json(server.to_json())
+    events = []
+
+    class Recorder:
+        def _document_patched(self, event):
+            events.append(event)
+
+    server.callbacks.on_change_dispatch_to(Recorder())
+    head.text, other.text = "θ₀ = 33°", "changed"
+    message = lc.Session(0, "http://127.0.0.1:1", replica=replica).protocol.create(
+        "PATCH-DOC", events)
+    session = lc.Session(0, "http://127.0.0.1:1", replica=replica)
+    session.doc = client
+    session.watched = {head.id}
+    session._apply(message, message.content["events"])
+    return client.get_model_by_id(head.id).text, client.get_model_by_id(other.id).text
+
+
+def test_a_watched_copy_applies_the_changes_it_reads_and_skips_the_rest(lc):
+    assert _patch(lc, "watched") == ("θ₀ = 33°", "unchanged")
+
+
+def test_a_full_copy_applies_every_change_as_bokehjs_does(lc):
+    assert _patch(lc, "full") == ("θ₀ = 33°", "changed")
+
+
+def test_an_unknown_replica_is_refused_with_the_choices(lc):
+    with pytest.raises(ValueError, match=r"replica='half'.*full.*watched"):
+        lc.Session(0, "http://127.0.0.1:1", replica="half")
