@@ -10,7 +10,7 @@
  *   m.figure("forces");               // a figure
  *   m.setData({name: data, ...});     // new data for sources (repaints their figures only;
  *                                     // a source whose data are the same is left alone)
- *   m.range(fig, "x_range", [lo, hi]);
+ *   m.range(fig, "x_range", [lo, hi]);  // redraws the figure, not its range's callbacks
  *   m.look(styles, on);               // projector mode on or off: ``styles`` the pack's
  *                                     // [model id, property, screen value, projector value]
  *   m.added(styles);                  // after models were added to the document (a tab
@@ -72,7 +72,14 @@
           if (!same(src.data, map[k])) src.data = map[k];
         });
       },
-      range: function (fig, which, lohi) { fig[which].setv({start: lohi[0], end: lohi[1]}); },
+      range: function (fig, which, lohi) {
+        // Set quietly, then one change (the plot and its axes redraw): not the callbacks on
+        // its start and its end (the player's frame: drawn once the new contact is in).
+        var r = fig[which];
+        if (r.start === lohi[0] && r.end === lohi[1]) return;
+        r.setv({start: lohi[0], end: lohi[1]}, {silent: true});
+        r.change.emit();
+      },
       look: function (styles, on) {
         if (on === projectorShown) return;  // (setting the same styles again repaints all)
         projectorShown = on;

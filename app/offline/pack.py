@@ -54,8 +54,8 @@ OFFLINE_TABS = ("support", "polar", "map")
 TITLE = "Micropillar friction explorer (offline)"
 #: The page's scripts (app/offline/*.js), in loading order.
 SCRIPTS = ("kernel_inputs", "kernel_rhs", "kernel_dopri5", "kernel", "solvers", "arrays",
-           "fragment", "jobs", "views", "paint", "models", "readouts", "polarview", "mapview",
-           "tabs", "open", "page")
+           "fragment", "jobs", "first", "views", "paint", "models", "readouts", "polarview",
+           "mapview", "tabs", "open", "page")
 
 _SLIDERS = (  # (control, fragment key, title, log scale or the linear step)
     ("k_r", "k_r", "k_r: radial stiffness (Eq. 5)", True),

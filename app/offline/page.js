@@ -91,13 +91,12 @@
     clearTimeout(statusTimer);
     if (on) statusTimer = setTimeout(function () { if (doc) model("status").text = "computing…"; }, 200);
   });
-  // The first contact is requested as the page's scripts run (``requestFirst``): its
-  // worker computes while Bokeh builds the document, whose views wait for the result
-  // ({key: its input, got: [result, ms, input], arrived: a Promise of it}).
-  var first = null, FIRST_WAIT_MS = 250;
+  // The first contact (first.js), requested as the page's scripts run; drawn into the
+  // document before its views are built.
+  var first = null;
   function drawWhenReady(r, ms, input) {
     if (doc) drawSupport(r, ms, input);
-    else if (first) { first.got = [r, ms, input]; first.done(); }
+    else if (first) first.keep(r, ms, input);
   }
   var sweepChannel = new Channel("sweep", drawPolar, function (on) {
     if (on) polar.status("computing the 72 orientations in the page…");
@@ -187,7 +186,7 @@
     explorer.drawn += 1;
     document.documentElement.setAttribute("data-drawn", String(explorer.drawn));
     if (explorer.drawn === 1) { readyResolve(explorer.result); autoplay(); }
-    requestArrays();
+    setTimeout(requestArrays, 0);  // their workers started once this frame is shown
   }
 
   /** The headline for the current contact and, once computed for this state, the
@@ -252,10 +251,10 @@
   var lastArrays = null, arraysDue = false;
   function compute() {
     keyClock.take();  // the key press (if any) whose redraw is timed
-    var input = contactInput(state), early = first;
+    var input = contactInput(state), early = first ? first.take(input) : undefined;
     first = null;
-    if (!early || early.key !== JSON.stringify(input)) contactChannel.request(input);
-    else if (early.got) drawSupport.apply(null, early.got);  // else drawn when it comes
+    if (early === undefined) contactChannel.request(input);
+    else if (early) drawSupport.apply(null, early);  // else drawn when it comes
     if (arraysKey(state) !== lastArrays) {
       lastArrays = arraysKey(state);
       arraysDue = true;  // requested once the support is drawn (countDrawn)
@@ -375,26 +374,19 @@
       set: function (partial) { setState(partial, false); }
     });
     applyFragment();
+    later.runBut(["drawn"]);  // the texts in place before the views are built and laid out
     window.addEventListener("hashchange", applyFragment);
     window.addEventListener("keydown", function (e) { map.keys(e); }, true);
   }
 
-  (function requestFirst() {  // before the document is built (``first``)
-    try {
-      var input = contactInput(parseFragment(linkFragment()).state);
-      first = {key: JSON.stringify(input), got: null};
-      first.arrived = new Promise(function (done) { first.done = done; });
-      contactChannel.request(input);  // starts its worker; the arrays' start at their first job
-    } catch (error) {
-      first = null;  // requested by applyFragment, once the document is there
-    }
-  })();
-
+  try {  // before the document is built
+    first = new window.MicropillarFirst(contactChannel, contactInput(parseFragment(linkFragment()).state));
+  } catch (error) {
+    first = null;  // requested by applyFragment, once the document is there
+  }
   // The document is built after the page's scripts ran; its views wait for the first
-  // contact (open.js), at most FIRST_WAIT_MS, so that their first paint shows it.
+  // contact (open.js, first.js), so that their first paint shows it.
   window.MicropillarOpen(function (built) {
-    var wait = [new Promise(function (done) { setTimeout(done, FIRST_WAIT_MS); })];
-    if (first) wait.push(first.arrived);
-    return Promise.race(wait).then(function () { start(built); });
+    return (first ? first.ready() : Promise.resolve()).then(function () { start(built); });
   });
 }());
