@@ -4,7 +4,8 @@
 Bokeh's Python API -- the sliders k_r, k_theta, F_N, theta0, the regime presets, projector
 mode, the headline, and three tabs of the dashboard's figures (``figures.py``: the
 support with Fig. 7, Fig. 3, the energy bars of Eq. 12 and the player; the polar
-diagrams of Fig. 11; the shipped regime maps of Fig. 5) -- and saves it with BokehJS
+diagrams of Fig. 11; the shipped regime maps of Fig. 5: these two packed apart from the
+opening document and added when first shown, ``tabs.py``) -- and saves it with BokehJS
 inlined (``bokeh.resources.INLINE``: no CDN, no font, no request). In the page the
 JavaScript port of the kernel (``kernel.js`` and its ``kernel_*.js``) recomputes in Web
 Workers whenever a control moves, ``views.js`` turns its results into the figures' data

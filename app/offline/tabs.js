@@ -1,4 +1,4 @@
-/* The offline page's tabs drawn when first shown (pack.py's ``later_tab``, tabs.py): the
+/* The offline page's tabs drawn when first shown (tabs.py's ``later_tab``): the
  * document holds a placeholder panel for each; the panel with its figures is in the JSON
  * element #mp-later, read and added to the document (BokehJS's
  * ``Document.apply_json_patch``) when the tab is first shown, so that the page opens with
@@ -8,7 +8,6 @@
  *       // tabs: the Tabs model; keys: each tab's key in order (CONFIG.offline_tabs)
  *   later.show(index);   // the tab's panel in place of its placeholder: true when it was
  *                        // added now, false when it was there already
- *   later.built(key);    // true once the tab "polar" or "map" is in the document
  */
 (function (root) {
   "use strict";
@@ -40,6 +39,6 @@
       return true;
     }
 
-    return {show: show, built: function (key) { return !!built[key]; }};
+    return {show: show};
   };
 }(this));
