@@ -47,3 +47,59 @@ def test_the_offline_explorers_modules_are_small():
              for p in here.iterdir() if p.name.endswith((".js", ".py"))}
     assert {"page.js", "kernel.js", "pack.py"} <= set(sizes)
     assert {name: n for name, n in sizes.items() if n > 400} == {}
+
+
+def _objects(rep, out):
+    """The models (``{"type": "object", ...}``) in a BokehJS JSON value, by id."""
+    if isinstance(rep, dict):
+        if rep.get("type") == "object" and "id" in rep:
+            out[rep["id"]] = rep
+        for value in rep.values():
+            _objects(value, out)
+    elif isinstance(rep, list):
+        for value in rep:
+            _objects(value, out)
+    return out
+
+
+def test_the_page_opens_with_the_support_tabs_models_alone(tmp_path):
+    """The opening document holds the controls, the texts and the support tab; the polar
+    and map tabs' panels are in ``#mp-later`` (added when first shown), sharing no model
+    with it, their figures named and marked for screen readers."""
+    from app.offline.pack import write
+    from app.offline.tabs import LATER_ID
+    out = tmp_path / "explorer.html"
+    write(out)
+    html = out.read_text(encoding="utf-8")
+    docs = re.search(r'<script type="application/json" id="[^"]+">\s*(.*?)\s*</script>',
+                     html, re.S).group(1)
+    (doc,) = json.loads(docs.replace("&lt;", "<").replace("&gt;", ">")
+                        .replace("&amp;", "&")).values()
+    later = json.loads(re.search(rf'<script id="{LATER_ID}" type="application/json">\n(.*?)'
+                                 r'\n</script>', html, re.S).group(1))
+    assert set(later) == {"polar", "map"}
+    opening = _objects(doc["roots"], {})
+    tabs = next(r for r in doc["roots"] if r["attributes"].get("name") == "tabs")
+    panels = tabs["attributes"]["tabs"]
+    support = _objects(panels[0], {})
+    others = _objects([r for r in doc["roots"] if r is not tabs], {})
+    # The opening document: the other roots, the support tab, the Tabs (with its callback)
+    # and the two placeholder panels with their placeholders -- nothing more.
+    assert [p["attributes"]["name"] for p in panels] == [
+        "tab-support", "tab-polar-later", "tab-map-later"]
+    placeholders = _objects(panels[1:], {})
+    assert sorted(m["name"] for m in placeholders.values()) == ["Div", "Div", "TabPanel", "TabPanel"]
+    own = _objects({k: v for k, v in tabs["attributes"].items() if k != "tabs"}, {tabs["id"]: 0})
+    assert set(opening) == set(others) | set(support) | set(placeholders) | set(own)
+    assert len(own) <= 3, own  # the Tabs, its callback
+    for key, panel in later.items():
+        models = _objects(panel, {})
+        assert not set(models) & set(opening), key
+        names = {m.get("attributes", {}).get("name") for m in models.values()}
+        assert panel["attributes"]["name"] == f"tab-{key}"
+        want = {"polar_FTx", "polar_DyDx", "polar_FTy", "polar-status"} if key == "polar" \
+            else {"regime_map", "regime_now", "map-note", "map-quantity"}
+        assert want <= names, (key, names)
+        figures = [m for m in models.values() if m["name"] == "Figure"]
+        assert figures and all(f"figure-{f['attributes']['name']}" in
+                               f["attributes"]["css_classes"] for f in figures), key

@@ -6,7 +6,8 @@
  *       // page: {source(name), model(name), figure(name), clampRound(key, v),
  *       //        state() -> the page's state, set(partial) -> change it}
  *   map.draw();          // for the current state: new data only for a new load, quantity
- *                        // or springs (the map's tab is built when first shown)
+ *                        // or springs; nothing until the map is in the document
+ *   map.show();          // the map is in the document now (its tab shown, tabs.js): drawn
  *   map.quantity("5b");  // the quantity shown (the map's select)
  *   map.tap(x, y);       // a click at (k_r, k_theta)
  *   map.keys(event);     // a keydown: the arrow keys move one cell of the 24 x 24 grid
@@ -17,6 +18,7 @@
   root.MicropillarMapView = function (CONFIG, page) {
     var K = root.MicropillarKernel, CONTROLS = CONFIG.controls;
     var shown = null, now = null, which = "5a";  // load/quantity shown, the springs marked
+    var built = false;  // the map is in the document
 
     function nearestLoad(F) {
       var best = null;
@@ -28,6 +30,7 @@
     function loadLabel(L) { return K.formatG(L); }
 
     function draw() {
+      if (!built) return;
       var state = page.state(), load = nearestLoad(state.F_N), m = CONFIG.maps.loads[loadLabel(load)];
       if (shown !== loadLabel(load) + "/" + which) {
         var data = Object.assign({}, CONFIG.maps.cells, m.columns);
@@ -80,6 +83,7 @@
     }
 
     return {draw: draw, tap: tap, keys: keys,
+            show: function () { built = true; draw(); },
             quantity: function (q) { which = q; draw(); }};
   };
 }(this));

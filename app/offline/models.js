@@ -10,9 +10,12 @@
  *   m.figure("forces");               // a figure
  *   m.setData({name: data, ...});     // new data for sources (repaints their figures only;
  *                                     // a source whose data are the same is left alone)
- *   m.range(fig, "x_range", [lo, hi]);
+ *   m.range(fig, "x_range", [lo, hi]);  // redraws the figure, not its range's callbacks
  *   m.look(styles, on);               // projector mode on or off: ``styles`` the pack's
  *                                     // [model id, property, screen value, projector value]
+ *   m.added(styles);                  // after models were added to the document (a tab
+ *                                     // drawn when first shown, tabs.js): found by name,
+ *                                     // and in the current look
  */
 (function (root) {
   "use strict";
@@ -33,10 +36,24 @@
   }
 
   root.MicropillarModels = function (doc) {
-    var byName = {}, projectorShown = false;  // packed with the screen's look
-    doc.all_models.forEach(function (m) {
-      if (m.name) (byName[m.name] = byName[m.name] || []).push(m);
-    });
+    var byName = {}, known = {}, projectorShown = false;  // packed with the screen's look
+    /** Indexes the document's models not seen yet; returns their ids ({id: true}). */
+    function index() {
+      var added = {};
+      doc.all_models.forEach(function (m) {
+        if (known[m.id]) return;
+        known[m.id] = added[m.id] = true;
+        if (m.name) (byName[m.name] = byName[m.name] || []).push(m);
+      });
+      return added;
+    }
+    index();
+    function setStyle(c, on) {
+      var m = doc.get_model_by_id(c[0]), attrs = {};
+      if (!m) return;
+      attrs[c[1]] = on ? c[3] : c[2];
+      m.setv(attrs);
+    }
     function find(name, test) {
       var list = byName[name] || [];
       for (var i = 0; i < list.length; i++) if (!test || test(list[i])) return list[i];
@@ -55,17 +72,23 @@
           if (!same(src.data, map[k])) src.data = map[k];
         });
       },
-      range: function (fig, which, lohi) { fig[which].setv({start: lohi[0], end: lohi[1]}); },
+      range: function (fig, which, lohi) {
+        // Set quietly, then one change (the plot and its axes redraw): not the callbacks on
+        // its start and its end (the player's frame: drawn once the new contact is in).
+        var r = fig[which];
+        if (r.start === lohi[0] && r.end === lohi[1]) return;
+        r.setv({start: lohi[0], end: lohi[1]}, {silent: true});
+        r.change.emit();
+      },
       look: function (styles, on) {
         if (on === projectorShown) return;  // (setting the same styles again repaints all)
         projectorShown = on;
-        styles.forEach(function (c) {
-          var m = doc.get_model_by_id(c[0]), attrs = {};
-          if (!m) return;
-          attrs[c[1]] = on ? c[3] : c[2];
-          m.setv(attrs);
-        });
+        styles.forEach(function (c) { setStyle(c, on); });
         document.documentElement.classList.toggle("projector", on);
+      },
+      added: function (styles) {
+        var added = index();  // (they were packed with the screen's look)
+        if (projectorShown) styles.forEach(function (c) { if (added[c[0]]) setStyle(c, true); });
       }
     };
   };

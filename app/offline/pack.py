@@ -4,7 +4,8 @@
 Bokeh's Python API -- the sliders k_r, k_theta, F_N, theta0, the regime presets, projector
 mode, the headline, and three tabs of the dashboard's figures (``figures.py``: the
 support with Fig. 7, Fig. 3, the energy bars of Eq. 12 and the player; the polar
-diagrams of Fig. 11; the shipped regime maps of Fig. 5) -- and saves it with BokehJS
+diagrams of Fig. 11; the shipped regime maps of Fig. 5: these two packed apart from the
+opening document and added when first shown, ``tabs.py``) -- and saves it with BokehJS
 inlined (``bokeh.resources.INLINE``: no CDN, no font, no request). In the page the
 JavaScript port of the kernel (``kernel.js`` and its ``kernel_*.js``) recomputes in Web
 Workers whenever a control moves, ``views.js`` turns its results into the figures' data
@@ -42,6 +43,7 @@ from ..texts import AVERAGE_NAMES, FELT_AVERAGE, MECHANISMS
 from ..defaults import TABS
 from ..worker import UNIFORM_TOL
 from . import figures as views
+from .tabs import LATER_ID, later_json, later_tab, map_tab, polar_tab
 
 __all__ = ["page_html", "page_bytes", "write", "config", "initial_fragment", "MAX_BYTES",
            "OFFLINE_TABS", "FRAGMENT_KEYS"]
@@ -53,8 +55,8 @@ OFFLINE_TABS = ("support", "polar", "map")
 TITLE = "Micropillar friction explorer (offline)"
 #: The page's scripts (app/offline/*.js), in loading order.
 SCRIPTS = ("kernel_inputs", "kernel_rhs", "kernel_dopri5", "kernel", "solvers", "arrays",
-           "fragment", "jobs", "views", "paint", "models", "readouts", "polarview", "mapview",
-           "page")
+           "fragment", "jobs", "first", "views", "paint", "models", "readouts", "polarview",
+           "mapview", "tabs", "open", "page")
 
 _SLIDERS = (  # (control, fragment key, title, log scale or the linear step)
     ("k_r", "k_r", "k_r: radial stiffness (Eq. 5)", True),
@@ -81,10 +83,6 @@ MISSING = ("Not in this offline page: the array view, the load curves (Fig. 6), 
            "export. Run <code>panel serve app</code> for the full explorer.")
 #: The headline's clause for a uniform array that could not be computed.
 UNIFORM_FAILED_NOTE = "not computed (see the uniform array's readout)"
-POLAR_CAPTION = ("Fixed-orientation arrays (every support at the same θ₀) for the current "
-                 "springs and load, 72 orientations on [0°, 180°] mirrored (y → −y), each "
-                 "at the load factor β of the controls (self-consistent: solved for each "
-                 "orientation); computed in this page. Click a diagram to set θ₀.")
 
 
 def config() -> dict:
@@ -141,49 +139,6 @@ def _support_tab(figs):
                   name="support-tab")
 
 
-def _polar_tab(polar):
-    status = Div(text="", name="polar-status", styles={"color": "#555555"},
-                 sizing_mode="stretch_width")
-    caption = Div(text=POLAR_CAPTION, name="polar-caption", sizing_mode="stretch_width",
-                  styles={"color": "#555555", "font-size": "0.9em"})
-    for fig in polar.values():
-        fig.js_on_event("tap", CustomJS(code="if (window.explorer) window.explorer._polarTap("
-                                             "cb_obj.x, cb_obj.y);"))
-    cells = [column([fig], width=335, height=360) for fig in polar.values()]
-    return column([row(cells, styles={"flex-wrap": "wrap"}, sizing_mode="stretch_width",
-                       name="polar-row"), status, caption],
-                  sizing_mode="stretch_width", name="polar-tab")
-
-
-def _map_tab(fig):
-    fig.sizing_mode = "stretch_width"
-    fig.min_width = 300
-    fig.js_on_event("tap", CustomJS(code="if (window.explorer) window.explorer._mapTap("
-                                         "cb_obj.x, cb_obj.y);"))
-    quantity = Select(title="map", value="5a", name="map-quantity", width=260,
-                      options=[(q, re.sub(r", F_N = [0-9.]+", "", t))
-                               for q, t in _map_titles().items()])
-    quantity.js_on_change("value", CustomJS(
-        code="if (window.explorer) window.explorer._mapQuantity(cb_obj.value);"))
-    note = Div(text="", name="map-note", sizing_mode="stretch_width",
-               styles={"color": "#555555", "font-size": "0.9em"})
-    return column([quantity, fig, note], sizing_mode="stretch_width", name="map-tab")
-
-
-def _map_titles() -> dict:
-    from ..figures.arrays import MAP_QUANTITIES
-    return {q: t for q, (_, t) in MAP_QUANTITIES.items()}
-
-
-def _later_tab(child, title: str, key: str) -> TabPanel:
-    """A tab drawn when first shown: its panel holds a placeholder and, in its ``tags``, the
-    panel with ``child`` that the page puts in its place (page.js, ``showTab``). Hidden
-    tabs are neither built nor laid out while the page opens."""
-    content = TabPanel(child=child, title=title, name=f"tab-{key}")
-    placeholder = Div(text="<i>drawing…</i>", name=f"tab-{key}-placeholder")
-    return TabPanel(child=placeholder, title=title, name=f"tab-{key}-later", tags=[content])
-
-
 def _layout(cfg: dict, figs: dict, polar: dict, regime_map):
     controls = cfg["controls"]
     sliders = [_slider(key, title, controls[key]) for _, key, title, _ in _SLIDERS]
@@ -218,13 +173,15 @@ def _layout(cfg: dict, figs: dict, polar: dict, regime_map):
                                                           styles={"flex-wrap": "wrap"}),
                    *sliders[:4], beta_mode, sliders[4], status, projector, missing],
                   sizing_mode="stretch_width", name="side")
+    polar_panel, polar_content = later_tab(polar_tab(polar), "Polar (Fig. 11)", "polar")
+    map_panel, map_content = later_tab(map_tab(regime_map), "Regime map (Fig. 5)", "map")
     tabs = Tabs(tabs=[TabPanel(child=_support_tab(figs), title="Support", name="tab-support"),
-                      _later_tab(_polar_tab(polar), "Polar (Fig. 11)", "polar"),
-                      _later_tab(_map_tab(regime_map), "Regime map (Fig. 5)", "map")],
+                      polar_panel, map_panel],
                 name="tabs", sizing_mode="stretch_width", min_width=300)
     tabs.js_on_change("active", CustomJS(
         code="if (window.explorer) window.explorer._tab(cb_obj.active);"))
-    return dict(heading=heading, headline=headline, side=side, tabs=tabs)
+    roots = dict(heading=heading, headline=headline, side=side, tabs=tabs)
+    return roots, dict(polar=polar_content, map=map_content)
 
 
 #: Where each root goes (``_layout``'s, by name): separate roots, so that a new text in
@@ -304,7 +261,8 @@ def _base_page() -> str:
         [figs["scene"], figs["forces"], figs["law"], figs["energy_fig"], *polar.values(),
          regime_map])
     doc = Document()
-    for root in _layout(cfg, figs, polar, regime_map).values():
+    roots, later = _layout(cfg, figs, polar, regime_map)
+    for root in roots.values():
         doc.add_root(root)
     doc.title = TITLE
     mark_figures(doc)  # named and described for screen readers (PAGE_SCRIPT)
@@ -313,6 +271,7 @@ def _base_page() -> str:
                                       template=PAGE_TEMPLATE))
     here = resources.files(__package__)
     extra = (_script("mp-config", json.dumps(cfg).replace("</", "<\\/"), "application/json")
+             + _script(LATER_ID, later_json(later, doc), "application/json")
              + "".join(_script(f"mp-{name}", (here / f"{name}.js").read_text(encoding="utf-8"))
                        for name in SCRIPTS)
              + PAGE_SCRIPT)  # slider handles and figures named for screen readers

@@ -14,14 +14,14 @@
  *       the key press to the first animation frame after the support's figures changed;
  *   explorer.ready   -> a Promise resolved at the first drawn plot;
  *   explorer.pending() -> true while the support's contact is computed or drawn;
- *   explorer.polar   -> the last orientation sweep drawn (Fig. 11; its ``key`` as the
- *       uniform array's), explorer.polarDrawn;
+ *   explorer.polar   -> the last orientation sweep (Fig. 11, drawn once its tab is shown;
+ *       its ``key`` as the uniform array's), explorer.polarDrawn;
  *   explorer.uniform -> the last uniform array drawn (its ``key``: k_r,k_theta,F_N,beta),
  *       explorer.uniformDrawn.
  * Reads its configuration (ranges, defaults, regimes: from the Python model at pack time)
  * from the JSON element #mp-config and the kernel from #mp-kernel. Its Bokeh models are
- * found by models.js; its texts are readouts.js's, Fig. 11 polarview.js's, Fig. 5
- * mapview.js's.
+ * found by models.js, the polar and map tabs added by tabs.js; its texts are
+ * readouts.js's, Fig. 11 polarview.js's, Fig. 5 mapview.js's.
  */
 (function () {
   "use strict";
@@ -40,7 +40,7 @@
   var state = FRAGMENT.defaults(CONFIG);
 
   // ------------------------------------------------------------ Bokeh models
-  var doc = null, models = null, polar = null, texts = null;  // once the document is there
+  var doc = null, models = null, polar = null, texts = null, laterTabs = null;  // once built
   function model(name) { return models.model(name); }
   function source(name) { return models.source(name); }
   function figure(name) { return models.figure(name); }
@@ -70,12 +70,12 @@
     } finally { syncing = false; }
     applyProjector();
   }
-  /** A tab's figures are built when it is first shown (pack.py's ``_later_tab``): its
-   * placeholder panel is replaced by the panel in its tags. */
+  /** The polar and map tabs' models are added to the document when the tab is first
+   * shown (tabs.js), then drawn in the current state. */
   function showTab(index) {
-    var tabs = model("tabs"), panel = tabs.tabs[index], content = panel.tags && panel.tags[0];
-    if (!content || !content.child) return;
-    tabs.tabs = tabs.tabs.map(function (p, k) { return k === index ? content : p; });
+    if (!laterTabs.show(index)) return;
+    models.added(CONFIG.projector);
+    ({polar: polar, map: map})[CONFIG.offline_tabs[index]].show();
   }
   function showNotice(notices) {
     setText("notice", notices.length ? "<b>Link:</b> " + notices.map(esc).join("; ") : "");
@@ -91,16 +91,15 @@
     clearTimeout(statusTimer);
     if (on) statusTimer = setTimeout(function () { if (doc) model("status").text = "computing…"; }, 200);
   });
-  // The first contact is requested as the page's scripts run (``requestFirst``), while
-  // Bokeh builds its document: its worker computes meanwhile, and a result that comes
-  // before the document waits for it here ({key: its input, got: [result, ms, input]}).
+  // The first contact (first.js), requested as the page's scripts run; drawn into the
+  // document before its views are built.
   var first = null;
   function drawWhenReady(r, ms, input) {
     if (doc) drawSupport(r, ms, input);
-    else if (first) first.got = [r, ms, input];
+    else if (first) first.keep(r, ms, input);
   }
   var sweepChannel = new Channel("sweep", drawPolar, function (on) {
-    if (on) setText("polar-status", "computing the 72 orientations in the page…");
+    if (on) polar.status("computing the 72 orientations in the page…");
   });
 
   var uniformChannel = new Channel("uniform", drawUniform, function (on) {
@@ -187,7 +186,7 @@
     explorer.drawn += 1;
     document.documentElement.setAttribute("data-drawn", String(explorer.drawn));
     if (explorer.drawn === 1) { readyResolve(explorer.result); autoplay(); }
-    requestArrays();
+    setTimeout(requestArrays, 0);  // their workers started once this frame is shown
   }
 
   /** The headline for the current contact and, once computed for this state, the
@@ -252,10 +251,10 @@
   var lastArrays = null, arraysDue = false;
   function compute() {
     keyClock.take();  // the key press (if any) whose redraw is timed
-    var input = contactInput(state), early = first;
+    var input = contactInput(state), early = first ? first.take(input) : undefined;
     first = null;
-    if (!early || early.key !== JSON.stringify(input)) contactChannel.request(input);
-    else if (early.got) drawSupport.apply(null, early.got);  // else drawn when it comes
+    if (early === undefined) contactChannel.request(input);
+    else if (early) drawSupport.apply(null, early);  // else drawn when it comes
     if (arraysKey(state) !== lastArrays) {
       lastArrays = arraysKey(state);
       arraysDue = true;  // requested once the support is drawn (countDrawn)
@@ -363,9 +362,10 @@
     compute();
   }
 
-  function start() {
-    doc = window.Bokeh.documents[0];
+  function start(built) {
+    doc = built;
     models = window.MicropillarModels(doc);
+    laterTabs = window.MicropillarLaterTabs(doc, model("tabs"), CONFIG.offline_tabs);
     texts = window.MicropillarReadouts(CONFIG, {model: model, state: function () { return state; }});
     polar = window.MicropillarPolarView(CONFIG, {setData: setData, setText: setText, esc: esc});
     map = window.MicropillarMapView(CONFIG, {
@@ -374,23 +374,19 @@
       set: function (partial) { setState(partial, false); }
     });
     applyFragment();
+    later.runBut(["drawn"]);  // the texts in place before the views are built and laid out
     window.addEventListener("hashchange", applyFragment);
     window.addEventListener("keydown", function (e) { map.keys(e); }, true);
   }
 
-  (function requestFirst() {  // before the document is built (``first``)
-    try {
-      var input = contactInput(parseFragment(linkFragment()).state);
-      first = {key: JSON.stringify(input), got: null};
-      contactChannel.request(input);  // starts its worker; the arrays' start at their first job
-    } catch (error) {
-      first = null;  // requested by applyFragment, once the document is there
-    }
-  })();
-
-  (function waitForBokeh() {  // the document is built after the page's scripts ran
-    var B = window.Bokeh;
-    if (B && B.documents && B.documents.length && B.documents[0].get_model_by_name("tabs")) start();
-    else setTimeout(waitForBokeh, 5);
-  })();
+  try {  // before the document is built
+    first = new window.MicropillarFirst(contactChannel, contactInput(parseFragment(linkFragment()).state));
+  } catch (error) {
+    first = null;  // requested by applyFragment, once the document is there
+  }
+  // The document is built after the page's scripts ran; its views wait for the first
+  // contact (open.js, first.js), so that their first paint shows it.
+  window.MicropillarOpen(function (built) {
+    return (first ? first.ready() : Promise.resolve()).then(function () { start(built); });
+  });
 }());

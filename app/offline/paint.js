@@ -10,6 +10,7 @@
  *   later.put(key, fn);   // run fn after the next paint; a newer fn for the same key
  *                         // replaces it (the newest state wins, in order of first put)
  *   later.run();          // run what is waiting now (e.g. when nothing is computing)
+ *   later.runBut(keys);   // run what is waiting now but ``keys`` (left for after the paint)
  *   later.waiting();      // true while work waits
  *
  * ``busy()`` true (a newer contact is being computed, e.g. keys held down) holds the
@@ -54,6 +55,14 @@
     var jobs = this.jobs, order = this.order;
     this.jobs = {}; this.order = [];
     order.forEach(function (key) { jobs[key](); });
+  };
+
+  Later.prototype.runBut = function (keys) {
+    var jobs = this.jobs, order = this.order;
+    this.order = order.filter(function (key) { return keys.indexOf(key) >= 0; });
+    this.jobs = {};
+    this.order.forEach(function (key) { this.jobs[key] = jobs[key]; }, this);
+    order.forEach(function (key) { if (keys.indexOf(key) < 0) jobs[key](); });
   };
 
   function KeyClock(target) {

@@ -56,7 +56,15 @@ def test_rapid_key_presses_end_with_every_view_in_the_final_state(offline):
     frames = offline.data("support_frames")
     assert frames["tau"][-1] == pytest.approx(result["t_out"], rel=1e-12)
     assert offline.model("support_player_readout", "html").endswith(f"τ = {frames['tau'][0]:.2f}")
-    # The polar diagrams' marker is this contact's, at theta0 = 102 degrees.
+    # The polar diagrams, drawn when their tab is first shown: the final sweep, and the
+    # marker this contact's, at theta0 = 102 degrees.
+    offline.page.locator(".bk-tab", has_text="Polar").click()
+    offline.page.wait_for_function(
+        "[...Bokeh.documents[0].all_models].some((m) => m.name === 'polar-status'"
+        " && m.text.includes('orientations computed'))")
+    sweep = offline.page.evaluate("explorer.polar")
+    assert offline.data("polar_FTx")["value"][0] == pytest.approx(sweep["F_mean_x"][0] / mu0(),
+                                                                  rel=1e-12)
     now = offline.data("polar_FTx_now")
     assert math.degrees(math.atan2(now["y"][0], now["x"][0])) == pytest.approx(102, abs=1e-9)
     assert now["value"][0] == pytest.approx(result["F_mean_x"] / mu0(), rel=1e-12)
@@ -92,4 +100,34 @@ def test_a_link_to_a_hidden_tab_draws_it_in_the_links_state(offline):
     assert len(shown) == 3 and min(b["width"] for b in shown) >= 250  # Fig. 11's three
     assert len(offline.data("polar_FTx")["value"]) == 2 * 72 + 1
     assert "tab=polar" in offline.page.evaluate("location.hash")
+    assert offline.errors == []
+
+
+def test_the_polar_and_map_tabs_are_added_when_first_shown_in_the_current_look(offline):
+    """The page opens with the support tab's models alone; the polar and map tabs' models
+    are added when their tab is first shown, drawn in the current state and look
+    (projector mode on before they existed)."""
+    offline.open("#k_r=0.1&k_theta=0.3&F_N=3&theta0_deg=60&projector=1")
+    offline.page.wait_for_function(f"{POLAR} >= 1")
+    names = ("[...Bokeh.documents[0].all_models].filter((m) => ['polar_FTx', 'regime_map',"
+             " 'polar-status', 'map-note'].includes(m.name)).length")
+    assert offline.page.evaluate(names) == 0
+    offline.page.locator(".bk-tab", has_text="Polar").click()
+    offline.page.wait_for_function("[...Bokeh.documents[0].all_models].some((m) => m.name === "
+                                   "'polar-status' && m.text.includes('orientations computed'))")
+    assert len(offline.data("polar_FTx")["value"]) == 2 * 72 + 1
+    now = offline.data("polar_FTx_now")
+    assert math.degrees(math.atan2(now["y"][0], now["x"][0])) == pytest.approx(60, abs=1e-9)
+    from app.figures.common import MIN_TEXT_PX, PROJECTOR_SCALE
+    size = ("[...Bokeh.documents[0].all_models].find((m) => m.name === '{}'"
+            " && m.renderers !== undefined).title.text_font_size")
+    projected = f"{round((MIN_TEXT_PX + 1) * PROJECTOR_SCALE)}px"
+    assert offline.page.evaluate(size.format("polar_FTx")) == projected
+    offline.page.locator(".bk-tab", has_text="Regime map").click()
+    offline.page.wait_for_function("document.documentElement.getAttribute('data-map') === '3/5a'")
+    assert offline.data("regime_now") == {"k_r": [0.1], "k_theta": [0.3]}
+    assert offline.page.evaluate(size.format("regime_map")) == projected
+    shown = [f for f in offline.page.locator(".bk-Figure").all() if f.is_visible()]
+    assert len(shown) == 1 and shown[0].bounding_box()["width"] >= 300
+    assert offline.page.evaluate(names) == 6  # polar_FTx and regime_map: a figure, a source
     assert offline.errors == []
