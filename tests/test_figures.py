@@ -185,3 +185,27 @@ def test_styling_keeps_a_horizontal_colour_scale_long_and_a_frameless_key_framel
     style(fig, projector)
     assert side.width == (14 if projector else 8)
     assert fig.outline_line_color is not None
+
+
+def test_the_support_figures_legends_name_only_still_stand_ins():
+    """A legend entry naming a glyph redrawn every frame would rebuild the legend every
+    frame (``legend_stand_ins``): after the figures are built, every entry of every legend
+    names renderers that are not animated, and each animated glyph a legend shows has its
+    still stand-in in the plot."""
+    from bokeh.models import GlyphRenderer
+
+    from app.figures import forces_figure, friction_law_figure, scene_figure
+    from app.figures.common import ANIMATED
+    from model.contact.params import Params
+
+    p = Params(k_r=3.0, k_theta=0.01)
+    checked = 0
+    for fig in (scene_figure(None, p, 0), forces_figure(None, p, 0),
+                friction_law_figure(None, p, 0)):
+        for legend in fig.legend:
+            for item in legend.items:
+                for r in item.renderers:
+                    assert isinstance(r, GlyphRenderer) and r.level != ANIMATED, (fig.name, r)
+                    assert r in fig.renderers
+                    checked += 1
+    assert checked >= 5

@@ -146,8 +146,10 @@ def legend_stand_ins(fig) -> None:
     instead: a Bokeh legend draws its entries anew (new elements, a page layout) whenever a
     renderer it names or that renderer's data changes, i.e. every frame. The stand-in
     shares the glyph, draws nothing in the plot and hides or shows the glyph with it
-    (``click_policy="hide"``)."""
-    for legend in fig.select(type=Legend):
+    (``click_policy="hide"``). (The legends are read from the plot's panels,
+    ``fig.legend``, not by walking every model the figure refers to: that walk was a tenth
+    of the page's build.)"""
+    for legend in fig.legend:
         for item in legend.items:
             item.renderers = [stand_in(fig, r) if r.level == ANIMATED else r
                               for r in item.renderers]
