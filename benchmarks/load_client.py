@@ -324,11 +324,13 @@ class Session:
         on_axis = round(getattr(self.sliders.get("theta0"), "value", 1.0), 6) % 180 == 0
         return [n for n in self.sliders if not (on_axis and n == "k_theta")] or list(self.sliders)
 
-    def _position(self, name: str) -> float:
+    def _position(self, name: str, avoid: tuple[float, ...] = ()) -> float:
+        """A random position on the slider's grid other than its current one and ``avoid``."""
         s = self.sliders[name]
         steps = int(round((s.end - s.start) / s.step))
         value = s.start + self.rng.randint(0, steps) * s.step
-        if abs(value - s.value) < 0.5 * s.step:  # a move, not the same position
+        taken = (s.value, *avoid)
+        while any(abs(value - t) < 0.5 * s.step for t in taken):  # a move, not a position held
             value = s.start + ((round((value - s.start) / s.step) + 1) % (steps + 1)) * s.step
         return round(value, 6)
 
@@ -345,10 +347,13 @@ class Session:
         name = self.rng.choice(self._movable())
         drag = drags and name == "theta0" and self.rng.random() < DRAG_PROBABILITY
         self._patched.clear()
+        # A drag ends elsewhere than where it began: the server may merge a quick drag's
+        # positions, and one that ends where it began changes nothing (and sends nothing).
+        began = self.sliders[name].value
         for step in range(DRAG_STEPS if drag else 1):
             if step:
                 await asyncio.sleep(DRAG_GAP_S)
-            value = self._position(name)
+            value = self._position(name, avoid=(began,))
             sent, pushes = time.perf_counter(), self.orbit_pushes
             wrote = await self._set(name, value)
 

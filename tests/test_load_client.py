@@ -55,3 +55,15 @@ def test_a_full_copy_applies_every_change_as_bokehjs_does(lc):
 def test_an_unknown_replica_is_refused_with_the_choices(lc):
     with pytest.raises(ValueError, match=r"replica='half'.*full.*watched"):
         lc.Session(0, "http://127.0.0.1:1", replica="half")
+
+
+def test_a_move_or_a_drag_never_ends_where_the_slider_already_was(lc):
+    """A drag that ends where it began changes nothing on the server, which then sends
+    nothing: the client would wait for an update that never comes. ``_position`` avoids
+    the slider's current value and the drag's starting one."""
+    from bokeh.models import Slider
+
+    session = lc.Session(0, "http://127.0.0.1:1")
+    session.sliders = {"theta0": Slider(start=0, end=3, step=1, value=1)}
+    seen = {session._position("theta0", avoid=(2.0,)) for _ in range(200)}
+    assert seen == {0.0, 3.0}

@@ -130,11 +130,14 @@ def _run_pool(func, tasks, workers, out, one_each=False) -> None:
 def _abandon(pool) -> None:
     """Cancel queued chunks and stop the pool's workers without waiting for them."""
     processes = list((getattr(pool, "_processes", None) or {}).values())
-    pool.shutdown(wait=False, cancel_futures=True)
     for process in processes:
         process.terminate()
     for process in processes:
         process.join(timeout=5)
+    # With its workers gone, the pool's manager thread ends at once; waiting for it here
+    # keeps it from closing its wake-up pipe while the interpreter's exit hook writes to
+    # it, which printed "OSError: Bad file descriptor" after a Ctrl-C (CPython 3.11).
+    pool.shutdown(wait=True, cancel_futures=True)
 
 
 # --------------------------------------------------------------------------- dask
