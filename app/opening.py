@@ -129,6 +129,7 @@ def answer_each_event_in_one_message() -> None:
 
 
 def _build(shell, make) -> None:
+    mark("page build starts")
     try:
         page = make()
     except Exception:
@@ -136,13 +137,16 @@ def _build(shell, make) -> None:
         shell.objects = [pn.pane.Alert(FAILED_TEXT, alert_type="danger",
                                        css_classes=["page-failed"])]
         return
+    mark("page objects built")
     pn.state.execute(lambda: _attach(shell, page), schedule=True)
 
 
 def _attach(shell, page) -> None:
     """The page's models, sent as one message."""
     try:
+        mark("page models start")
         with pn.io.hold():
             shell.objects = [page]
+        mark("page sent")
     except Exception:
         log.exception("the dashboard could not be shown")

@@ -58,6 +58,13 @@ REPLICAS = {
 }
 
 
+#: The steps of opening a page, timed from its request (``Session.open_steps``): the page
+#: answered (its light document built, app.opening), the document pulled over the
+#: websocket, the dashboard's patch read (the server built it once the page said it was
+#: ready) and applied to this client's copy (a browser's work, done here in Python).
+OPEN_STEPS = ("page", "pulled", "dashboard read", "dashboard applied")
+
+
 class SessionFailure(Exception):
     """A session could not open, stalled or lost its connection."""
 
@@ -94,6 +101,8 @@ class Session:
         self.last_orbit_read = math.nan  # when the latest message with orbit data was read
         self.open_s = math.nan
         self.opened_at = math.nan
+        #: Seconds from the page request to each step of opening (``OPEN_STEPS``).
+        self.open_steps: dict[str, float] = {}
         self.busy_pages = 0  # busy pages received before the dashboard
         self.errors: list[str] = []
         self.patches = 0
@@ -131,6 +140,7 @@ class Session:
             # after a moment, as its Reload button asks; the wait counts in the open time.
             self.busy_pages += 1
             await asyncio.sleep(BUSY_RETRY_S)
+        self._step("page")
         match = re.search(r'"token"\s*:\s*"([^"]+)"', page.body.decode())
         if match is None:
             raise SessionFailure("no session token in the page")
@@ -158,6 +168,7 @@ class Session:
                 raise SessionFailure(f"server error: {reply.content.get('text')}")
             if reply.msgtype == "PULL-DOC-REPLY":
                 break
+        self._step("pulled")
         self.doc = Document()
         reply.push_to_document(self.doc)
         self.doc.callbacks.on_change_dispatch_to(self)
@@ -170,7 +181,9 @@ class Session:
             if message is None:
                 raise SessionFailure("connection closed before the dashboard arrived")
             if message.msgtype == "PATCH-DOC":
+                self._step("dashboard read")
                 message.apply_to_document(self.doc, self)
+        self._step("dashboard applied")
         self.sliders = {name: self._find(f"ctl-{name}") for name in
                         ("theta0", "k_r", "k_theta", "F_N")}
         self.orbit = next(m for m in self.doc.models if getattr(m, "name", None) == "orbit")
@@ -180,6 +193,9 @@ class Session:
         self.watched.add(self.readout.id)
         self.open_s = time.perf_counter() - start
         self._reader = asyncio.create_task(self._read_loop())
+
+    def _step(self, name: str) -> None:
+        self.open_steps[name] = time.perf_counter() - self.opened_at
 
     async def first_plot(self, timeout: float = UPDATE_TIMEOUT_S) -> float:
         """Seconds from the page request until the orbit was drawn with data (the page

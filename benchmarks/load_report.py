@@ -59,6 +59,9 @@ def markdown(r: dict) -> str:
         if u.get("client", {}).get("n"):
             rows.append(("the same, until this Python client applied it", u["client"]))
         rows.append(("page open (GET + websocket + pull)", rd["open"]))
+        for step, q in (rd.get("open_steps") or {}).items():
+            if q["n"]:
+                rows.append((f"... its step: {step}", q))
         for name, p in rows:
             lines.append(f"| {tag} | {name} | {p['n']} | {p['p50_ms']:.0f} | "
                          f"{p['p95_ms']:.0f} | {p['max_ms']:.0f} |")

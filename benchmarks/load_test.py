@@ -93,8 +93,8 @@ from pathlib import Path
 import numpy as np
 
 from app.pages import RELEASE_DELAY_S
-from load_client import (CLASS_GAP_S, DRAG_PROBABILITY, PROFILES, REPLICAS, THINK_S,
-                         UPDATE_TIMEOUT_S)
+from load_client import (CLASS_GAP_S, DRAG_PROBABILITY, OPEN_STEPS, PROFILES, REPLICAS,
+                         THINK_S, UPDATE_TIMEOUT_S)
 from checkout import helper
 from load_class import LoopLag, drive
 from load_profile import ServerProfiler, summarise
@@ -300,6 +300,8 @@ def _round(base, app, pid, processes, log_path, profile, sessions, duration, see
                                             for s in driven), default=0),
                     "rate_per_s": (len(lat) + len(drag)) / max(elapsed, 1e-9)},
         "open": percentiles([s.open_s for s in driven if math.isfinite(s.open_s)]),
+        "open_steps": {k: percentiles([s.open_steps[k] for s in driven if k in s.open_steps])
+                       for k in OPEN_STEPS},
         "busy_pages": sum(s.busy_pages for s in driven),
         "sessions_with_updates": sum(1 for s in driven if s.latencies or s.drag_latencies),
         "errors": [f"session {s.index} ({s.session_id[:8]}): {e}" for s in driven
