@@ -65,19 +65,27 @@ def pool(monkeypatch):
 
 
 BROWSER_DIR = Path(__file__).parent / "browser"
+#: The browser tests' modules in this many groups, taken in turn: each group runs on one
+#: xdist worker with its own served dashboard and Chromium (the package's fixtures), so the
+#: two cores share the browser tests instead of one worker carrying them all.
+BROWSER_GROUPS = 2
 
 
 @pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items):
-    """Group each test with its module, the browser tests all together (``--dist loadgroup``);
+    """Group each test with its module, the browser tests' modules in ``BROWSER_GROUPS``
+    groups (``--dist loadgroup``);
     mark ``slow`` the tests listed in ``tests/slow_tests.txt`` (``tests/tiers.py``), before
     ``-m`` selects."""
     from tiers import LIST, read
 
     slow = read(LIST)
+    browser_modules = sorted({Path(str(item.fspath)).stem for item in items
+                              if BROWSER_DIR in Path(str(item.fspath)).parents})
     for item in items:
         path = Path(str(item.fspath))
-        group = "browser" if BROWSER_DIR in path.parents else path.stem
+        group = (f"browser-{browser_modules.index(path.stem) % BROWSER_GROUPS}"
+                 if BROWSER_DIR in path.parents else path.stem)
         item.add_marker(pytest.mark.xdist_group(group))
         if item.nodeid.split("@", 1)[0] in slow:
             item.add_marker(pytest.mark.slow)

@@ -11,7 +11,8 @@ Playwright's sync API keeps an event loop running in the main thread while it is
 which would break the asyncio code of later test modules.
 
 Artifacts (``artifacts/`` at the repository root): ``dashboard.png`` (the default page),
-``panel-serve.log`` (the server's log of the last run) and, for a failed test,
+``panel-serve.log`` (the server's log of the last run; with two xdist workers serving, the
+log of the one that finished last) and, for a failed test,
 ``failed-<test>.png`` with ``failed-<test>.console.txt``. ``MICROPILLAR_BROWSER_APP``
 serves another app folder instead of ``app`` (to try the harness itself).
 """
@@ -69,10 +70,16 @@ def pytest_runtest_makereport(item, call):
 
 @pytest.fixture(scope="session")
 def artifacts_dir() -> Path:
-    """``artifacts/`` at the repository root; failure files of an earlier run are removed."""
+    """``artifacts/`` at the repository root; failure files of an earlier run are removed
+    (once per run: with the browser tests on two xdist workers, the second to start must
+    not remove the first one's)."""
     ARTIFACTS.mkdir(exist_ok=True)
-    for old in ARTIFACTS.glob("failed-*"):
-        old.unlink(missing_ok=True)
+    run = os.environ.get("PYTEST_XDIST_TESTRUNUID") or str(os.getpid())
+    marker = ARTIFACTS / ".run"
+    if not marker.exists() or marker.read_text(encoding="utf-8") != run:
+        marker.write_text(run, encoding="utf-8")
+        for old in ARTIFACTS.glob("failed-*"):
+            old.unlink(missing_ok=True)
     return ARTIFACTS
 
 
