@@ -128,7 +128,8 @@ def _run_pool(func, tasks, workers, out, one_each=False) -> None:
 
 
 def _abandon(pool) -> None:
-    """Cancel queued chunks and stop the pool's workers without waiting for them."""
+    """Stop the pool's workers now (not after their chunks), cancel the queued chunks and
+    wait for the pool to shut down."""
     processes = list((getattr(pool, "_processes", None) or {}).values())
     for process in processes:
         process.terminate()
