@@ -27,8 +27,12 @@ STALE_CSS = """
 :host(.stale) table { opacity: 0.45; text-decoration: line-through; }
 :host(.stale) .design-headline-text { opacity: 0.45; }
 """
-BANNER_STYLE = {"background": "#fff3cd", "border": "1px solid #e0a800", "padding": "2px 6px",
-                "border-radius": "4px"}
+#: The banner's box is drawn on the pane's content, whose width is the pane's: a padding or
+#: border on the pane itself would push the content past the column's edge.
+BANNER_CSS = """
+:host > div { background: #fff3cd; border: 1px solid #e0a800; padding: 2px 6px;
+              border-radius: 4px; box-sizing: border-box; }
+"""
 
 
 def readouts_markdown(record: dict) -> str:
@@ -49,7 +53,7 @@ class DesignReadouts(pn.viewable.Viewer):
     def __init__(self, **params):
         super().__init__(**params)
         self.banner = pn.pane.Markdown("", width=340, margin=(0, 5), visible=False,
-                                       styles={"font-size": "0.88em", **BANNER_STYLE},
+                                       styles={"font-size": "0.88em"}, stylesheets=[BANNER_CSS],
                                        css_classes=["design-updating"])
         self.table = pn.pane.Markdown("", width=340, margin=(0, 5),
                                       styles={"font-size": "0.88em"},
