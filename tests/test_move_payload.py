@@ -107,3 +107,15 @@ def test_the_polar_marks_wait_for_their_tab(pool):
     page.move(tab="polar")  # shown: the spoke points at the latest theta0
     spoke = page.source("polar_FTx_spoke").data
     assert np.degrees(np.arctan2(spoke["y"][1], spoke["x"][1])) == pytest.approx(120.0)
+
+
+def test_the_first_trajectory_drawn_on_an_open_page_adds_no_callback(pool):
+    """The player's drawing exists before the page joins its document: the first trajectory
+    (drawn once the page is open, here when its tab is shown) sends data, never a new
+    callback (each would send the page's graph of models again)."""
+    page = Page(tab="equations")
+    events = page.move(tab="support")
+    added = [(type(e.model).__name__, e.attr) for e in events
+             if getattr(e, "attr", None) == "js_property_callbacks"]
+    assert not added, added
+    assert {"orbit", "support_frames", "support_frame_params"} <= _changed_sources(events)

@@ -145,12 +145,18 @@ def live_energy_figure(energies: dict, player, width: int = 420, height: int = 3
     return column(fig, readout_box, name="energy_live_layout")
 
 
+#: The columns of ``support_frames`` (time, the series interpolated, then v_R and mu) and
+#: of the trajectory's constants.
+FRAME_COLUMNS = ("tau", "x", "y", "theta", "v_x", "v_y", "F_x", "F_y", "F_abs", "v_R", "mu")
+FRAME_PARAMS = ("theta0", "L0", "x_start", "amp", "rho0", "tau_out", "vx0", "vx1", "vy0", "vy1")
+
+
 def support_frames(series, params, n_frames: int) -> dict:
     """The support's history on the player's frames: tau, x, y, theta, v_x, v_y, F_x, F_y,
     F_abs, v_R and mu(v_R)."""
     tau = np.linspace(0.0, float(series.tau[-1]), n_frames)
     out = {"tau": tau}
-    for k in ("x", "y", "theta", "v_x", "v_y", "F_x", "F_y", "F_abs"):
+    for k in FRAME_COLUMNS[1:-2]:
         out[k] = np.interp(tau, series.tau, getattr(series, k))
     out["v_R"] = np.hypot(out["v_x"] - 1.0, out["v_y"])
     out["mu"] = mu(out["v_R"], params)
@@ -159,7 +165,11 @@ def support_frames(series, params, n_frames: int) -> dict:
 
 def support_frames_data(series, params, n_frames: int) -> dict:
     """The data of the sources ``support_frames_callback`` reads: the frames and one row of
-    the trajectory's constants (the drawing of ``app.figures.scene``)."""
+    the trajectory's constants (the drawing of ``app.figures.scene``); with ``series``
+    None, the same columns empty (the callback then draws nothing)."""
+    if series is None:
+        return {"support_frames": {k: np.zeros(0) for k in FRAME_COLUMNS},
+                "support_frame_params": {k: [] for k in FRAME_PARAMS}}
     ext = _extent(series)
     x0, x1, y0, y1, _ = view_box(series, params)
     return {"support_frames": support_frames(series, params, n_frames),
@@ -172,7 +182,8 @@ def support_frames_data(series, params, n_frames: int) -> dict:
 
 def support_frames_callback(series, params, n_frames: int, scene=None, forces=None, law=None,
                             frame=None, frames_source=None):
-    """A ``CustomJS`` for ``player.on_frame`` drawing the existing figures at the frame.
+    """A ``CustomJS`` for ``player.on_frame`` drawing the existing figures at the frame
+    (``series`` None: made before the first trajectory, with empty sources).
 
     ``scene``, ``forces``, ``law``: figures made by ``scene_figure``, ``forces_figure`` and
     ``friction_law_figure`` (any may be None). It updates the named sources they already

@@ -91,7 +91,13 @@ class SupportView(pn.viewable.Viewer):
         self._sources = {}
         for fig in self.figures:
             self._sources.update(F.sources(fig))
-        self._frames_js = None  # made with the first trajectory
+        # The player's drawing, made before the page's models join a document: attached
+        # there, each callback added would send the page's graph of models again.
+        self._frames_js = support_frames_callback(
+            None, p, N_FRAMES, scene=self.scene, forces=self.forces, law=self.friction,
+            frame=self.player.frame, frames_source=self.frames)
+        self.player.on_frame(self._frames_js)
+        self._frames_js.args["fp"].js_on_change("data", self._frames_js)
         self._layout = None  # the grid, made by __panel__
         self._pinned = {self.scene: add_pinned(self.scene, "scene", "orbit"),
                         self.forces: add_pinned(self.forces, "forces", "forces")}
@@ -145,15 +151,8 @@ class SupportView(pn.viewable.Viewer):
                 self.energy.y_range.update(**dict(zip(("start", "end"),
                                                       energy_live_range(energies))))
             self.player.set_times(frames["support_frames"]["tau"])
-            if self._frames_js is None:
-                self._frames_js = support_frames_callback(
-                    s, p, N_FRAMES, scene=self.scene, forces=self.forces, law=self.friction,
-                    frame=self.player.frame, frames_source=self.frames)
-                self.player.on_frame(self._frames_js)
-                self._frames_js.args["fp"].js_on_change("data", self._frames_js)
-            else:
-                self._frames_js.args["data"].data = frames["support_frames"]
-                self._frames_js.args["fp"].data = frames["support_frame_params"]
+            self._frames_js.args["data"].data = frames["support_frames"]
+            self._frames_js.args["fp"].data = frames["support_frame_params"]
         self.description.text = plots_description(data)
         requested = self.results.slots["support"].requested_at
         if requested is not None:
