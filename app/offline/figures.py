@@ -19,7 +19,7 @@ import math
 import numpy as np
 from bokeh.core.property.dataspec import DataSpec
 from bokeh.core.property.vectorization import Value
-from bokeh.models import ColumnDataSource, GlyphRenderer
+from bokeh.models import ColumnDataSource, GlyphRenderer, Span
 
 from model import Params, simulate_support
 from model.controls import CONTROLS
@@ -75,6 +75,8 @@ def support_figures():
     legend_above(law)
     for fig in (scene, forces):
         legends_of_still_data(fig)
+    for fig in (scene, forces, law, energy.children[0]):
+        legend_keys_apart(fig)
     energy_fig = energy.children[0]
     energy.children[1].sizing_mode = "stretch_width"
     return dict(scene=scene, forces=forces, law=law, energy=energy, energy_fig=energy_fig,
@@ -105,6 +107,28 @@ def _still(fig, renderer: GlyphRenderer) -> GlyphRenderer:
     fig.renderers.append(still)
     pass_on_visible(still, renderer)
     return still
+
+
+def legend_keys_apart(fig) -> None:
+    """The renderers that only draw a legend's keys (stand-ins: every number NaN, nothing
+    drawn in the plot) go into one hidden group (a ``Span`` without a location, not
+    visible, whose ``renderers`` are they): BokehJS still has their views, which the legend
+    draws its keys with, but does not paint them with the plot. Each renderer a plot
+    paints moves its element and then reads the page's CSS (a style recalculation): with
+    every contact a figure's ranges change and all its renderers are painted again."""
+    keys = {r.id: r for legend in fig.legend for item in legend.items for r in item.renderers
+            if isinstance(r, GlyphRenderer) and _draws_nothing(r)}
+    if len(keys) < 2:
+        return
+    fig.renderers = [r for r in fig.renderers if r.id not in keys]
+    fig.renderers.append(Span(location=None, renderers=list(keys.values()), visible=False,
+                              name=f"{fig.name}_legend_keys"))
+
+
+def _draws_nothing(renderer: GlyphRenderer) -> bool:
+    columns = renderer.data_source.data.values()
+    numbers = [v for col in columns for v in col if not isinstance(v, str)]
+    return bool(numbers) and all(isinstance(v, float) and math.isnan(v) for v in numbers)
 
 
 def polar_figures() -> dict:
