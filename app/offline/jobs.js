@@ -10,8 +10,8 @@
  *                       // at once (no message, no frame between the key and the drawing);
  *                       // queued as ``request`` when a job runs or waits, or when the last
  *                       // one run here took over HERE_MS
- *   c.warmHere(input);  // run once on the page's thread, result dropped: compiles the
- *                       // kernel there before the first ``runHere``
+ *   c.warmHere(input, n);  // run n times on the page's thread (V8 compiles and optimises
+ *                       // the kernel there before the first ``runHere``); the last result
  *
  * One job at a time per channel; a newer request waits for the running job, or stops it
  * (the worker is replaced) when that job has run longer than RESTART_AFTER_MS: the reader
@@ -107,7 +107,10 @@
     this.hereMs = Date.now() - t0;
     this.draw(r, this.hereMs, input);
   };
-  Channel.prototype.warmHere = function (input) { runOnPage(this.kind, input); };
+  Channel.prototype.warmHere = function (input, n) {
+    for (var i = 0, r; i < n; i++) r = runOnPage(this.kind, input);
+    return r;
+  };
 
   Channel.prototype.finished = function (id, result, ms) {
     if (!this.inFlight || this.inFlight.id !== id) return;  // an abandoned job

@@ -135,9 +135,7 @@
     drawn: 0, result: null, polar: null, polarDrawn: 0, uniform: null, uniformDrawn: 0,
     keyToSupportMs: keyClock.times
   };
-
   function range(fig, which, lohi) { models.range(fig, which, lohi); }
-
   function drawSupport(r, ms) {
     if (r.error) {
       later.put("headline", function () {
@@ -209,12 +207,16 @@
     later.put("headline", writeHeadline);
     later.put("uniform-drawn", function () {
       explorer.uniformDrawn += 1;
-      if (explorer.uniformDrawn === 1)  // the kernel compiled on the page (shortContact)
-        setTimeout(function () { contactChannel.warmHere(contactInput(state)); }, 0);
+      if (explorer.uniformDrawn === 1) setTimeout(warmUp, 0);
       document.documentElement.setAttribute("data-uniform", String(explorer.uniformDrawn));
     });
   }
 
+  function warmUp() {  // the kernel and the support's views compiled on the page (shortContact)
+    var r = contactChannel.warmHere(contactInput(state), 4), s = r && !r.error && r.series;
+    if (s) [VIEWS.sceneData(s, r.params.theta0, CONFIG), VIEWS.forceData(s),
+            VIEWS.energyFrames(s, CONFIG), VIEWS.supportFrames(s, r.params, CONFIG)];
+  }
   function reducedMotion() {
     return !!(window.matchMedia && window.matchMedia("(prefers-reduced-motion: reduce)").matches);
   }
