@@ -99,7 +99,7 @@
   }
   Channel.prototype.runHere = function (input) {
     if (this.inFlight || this.pending || this.hereMs > HERE_MS) {
-      this.hereMs = 0;  // the next short job tries the page again
+      if (!this.inFlight && !this.pending) this.hereMs = 0;  // the next one tries the page
       this.request(input);
       return;
     }

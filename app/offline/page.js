@@ -26,8 +26,7 @@
 (function () {
   "use strict";
   var CONFIG = JSON.parse(document.getElementById("mp-config").textContent);
-  var KERNEL = window.MicropillarKernel;
-  var VIEWS = window.MicropillarViews;
+  var KERNEL = window.MicropillarKernel, VIEWS = window.MicropillarViews;
   var CONTROLS = CONFIG.controls;
   var MAX_STEPS = 1000000, HERE_STEPS = 2000;  // a contact this short: shortContact
 
@@ -213,9 +212,10 @@
   }
 
   function warmUp() {  // the kernel and the support's views compiled on the page (shortContact)
-    var r = contactChannel.warmHere(contactInput(state), 4), s = r && !r.error && r.series;
-    if (s) [VIEWS.sceneData(s, r.params.theta0, CONFIG), VIEWS.forceData(s),
-            VIEWS.energyFrames(s, CONFIG), VIEWS.supportFrames(s, r.params, CONFIG)];
+    var input = contactInput(state), r = shortContact(input) && contactChannel.warmHere(input, 4);
+    if (!r || r.error) return;
+    VIEWS.sceneData(r.series, r.params.theta0, CONFIG); VIEWS.forceData(r.series);
+    VIEWS.energyFrames(r.series, CONFIG); VIEWS.supportFrames(r.series, r.params, CONFIG);
   }
   function reducedMotion() {
     return !!(window.matchMedia && window.matchMedia("(prefers-reduced-motion: reduce)").matches);
@@ -265,9 +265,10 @@
     }
     later.put("map", drawMap);
   }
-  /** A theta0 step from a short contact (same springs and load: a few contacts from the
-   * last beta, 1-5 ms) is computed on the page's thread and drawn in the key's frame. */
-  function shortContact(input) { return !!input.previous && explorer.result.stats.n_steps <= HERE_STEPS; }
+  /** A theta0 step from a short contact (a few contacts from the last beta, 1-5 ms). */
+  function shortContact(input) {  // computed on the page's thread, drawn in the key's frame
+    return !!input.previous && explorer.result.stats.n_steps <= HERE_STEPS;
+  }
   /** The orientation sweep and the uniform array for the current state, after the
    * support's contact is drawn: on a small machine their workers would slow it down. */
   function requestArrays() {
