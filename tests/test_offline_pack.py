@@ -103,3 +103,36 @@ def test_the_page_opens_with_the_support_tabs_models_alone(tmp_path):
         figures = [m for m in models.values() if m["name"] == "Figure"]
         assert figures and all(f"figure-{f['attributes']['name']}" in
                                f["attributes"]["css_classes"] for f in figures), key
+
+
+def test_a_contacts_new_data_leave_the_legends_and_the_colour_bar_alone():
+    """The support's legends name still stand-ins (one NaN row, the plotted glyph), kept in
+    one hidden group per figure (not painted with the plot), never a renderer of a
+    contact's data: a BokehJS legend draws its entries anew when their renderers' data
+    change. The top view's colour bar has a mapper of its own, equal to the path's (its
+    image is redrawn whenever its mapper maps new data)."""
+    import math
+
+    from bokeh.models import ColorBar, GlyphRenderer, Span
+
+    from app.offline.figures import support_figures
+
+    figs = support_figures()
+    for name in ("scene", "forces"):
+        fig = figs[name]
+        plotted = [r for r in fig.renderers if isinstance(r, GlyphRenderer)]
+        groups = [r for r in fig.renderers if isinstance(r, Span) and r.name == f"{name}_legend_keys"]
+        assert len(groups) == 1 and groups[0].visible is False
+        for item in (i for legend in fig.legend for i in legend.items):
+            for r in item.renderers:
+                assert r.data_source.name is None and r in groups[0].renderers, item.label
+                assert all(math.isnan(v) for col in r.data_source.data.values() for v in col)
+                assert any(p.glyph is r.glyph for p in plotted) or name == "scene"
+    scene = figs["scene"]
+    bar = next(m for m in scene.right if isinstance(m, ColorBar))
+    orbit = next(r for r in scene.renderers if isinstance(r, GlyphRenderer)
+                 and r.data_source.name == "orbit")
+    path_mapper = orbit.glyph.line_color.transform
+    assert bar.color_mapper is not path_mapper
+    assert (bar.color_mapper.palette, bar.color_mapper.low, bar.color_mapper.high) == (
+        path_mapper.palette, path_mapper.low, path_mapper.high)

@@ -283,7 +283,10 @@ def scene_figure(series, params, frame: int = 0, width: int = 340, height: int =
     fig.add_layout(LabelSet(x=6, y=24, x_units="screen", y_units="screen", text="text",
                             source=src["scene_notes"], text_font_size="12px",
                             text_color=VERMILION, name="scene_notes"))
-    fig.add_layout(ColorBar(color_mapper=mapper, width=8, title="τ/τ_out",
+    # The colour bar's own copy of the path's mapper: BokehJS redraws a colour bar's image
+    # whenever its mapper maps new data, i.e. with every contact's path.
+    bar_mapper = LinearColorMapper(palette=Viridis256, low=0.0, high=1.0)
+    fig.add_layout(ColorBar(color_mapper=bar_mapper, width=8, title="τ/τ_out",
                             title_text_font_size="12px", major_label_text_font_size="12px",
                             name="scene_colorbar"), "right")
     fig.add_layout(Label(x=6, y=6, x_units="screen", y_units="screen", name="scene_time",

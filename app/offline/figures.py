@@ -19,6 +19,7 @@ import math
 import numpy as np
 from bokeh.core.property.dataspec import DataSpec
 from bokeh.core.property.vectorization import Value
+from bokeh.models import ColumnDataSource, GlyphRenderer, Span
 
 from model import Params, simulate_support
 from model.controls import CONTROLS
@@ -26,7 +27,7 @@ from model.runs.shipped_map import SHIPPED_LOADS, load_regime_map
 
 from .. import figures as F
 from ..figures.arrays import MAP_QUANTITIES, map_data, map_title, value_range
-from ..figures.common import legend_above
+from ..figures.common import legend_above, pass_on_visible
 from ..figures.live_energy import (energy_frames, live_energy_figure, support_frames_callback)
 from ..figures.player import SPEEDS, browser_player
 from ..figures.polar import QUANTITIES as POLAR_QUANTITIES
@@ -72,10 +73,62 @@ def support_figures():
     player.on_frame(frames_js)
     frames_js.args["fp"].js_on_change("data", frames_js)
     legend_above(law)
+    for fig in (scene, forces):
+        legends_of_still_data(fig)
+    for fig in (scene, forces, law, energy.children[0]):
+        legend_keys_apart(fig)
     energy_fig = energy.children[0]
     energy.children[1].sizing_mode = "stretch_width"
     return dict(scene=scene, forces=forces, law=law, energy=energy, energy_fig=energy_fig,
                 player=player, frames_js=frames_js)
+
+
+def legends_of_still_data(fig) -> None:
+    """Legend entries of ``fig`` that name a glyph of a contact's data (a named source: the
+    page sets it anew for each contact, e.g. Fig. 7's forces, the scene's rest line) name a
+    still stand-in instead, as ``app.figures.common.legend_stand_ins`` does for what the
+    player moves: a BokehJS legend draws its entries anew (new elements, a page layout, a
+    forced reflow when it is painted) whenever the data of a renderer it names change, i.e.
+    at every key press. The stand-in shares the glyph (the same key drawn), has one row of
+    NaN, draws nothing in the plot and hides or shows the glyph with it."""
+    for legend in fig.legend:
+        for item in legend.items:
+            item.renderers = [_still(fig, r) if r.data_source.name else r
+                              for r in item.renderers]
+
+
+def _still(fig, renderer: GlyphRenderer) -> GlyphRenderer:
+    if any(isinstance(v, str) for col in renderer.data_source.data.values() for v in col):
+        raise ValueError(f"{renderer.data_source.name}: a legend of text columns has no "
+                         f"one-row stand-in")
+    still = GlyphRenderer(data_source=ColumnDataSource(
+        {k: [math.nan] for k in renderer.data_source.data}), glyph=renderer.glyph,
+        visible=renderer.visible)
+    fig.renderers.append(still)
+    pass_on_visible(still, renderer)
+    return still
+
+
+def legend_keys_apart(fig) -> None:
+    """The renderers that only draw a legend's keys (stand-ins: every number NaN, nothing
+    drawn in the plot) go into one hidden group (a ``Span`` without a location, not
+    visible, whose ``renderers`` are they): BokehJS still has their views, which the legend
+    draws its keys with, but does not paint them with the plot. Each renderer a plot
+    paints moves its element and then reads the page's CSS (a style recalculation): with
+    every contact a figure's ranges change and all its renderers are painted again."""
+    keys = {r.id: r for legend in fig.legend for item in legend.items for r in item.renderers
+            if isinstance(r, GlyphRenderer) and _draws_nothing(r)}
+    if len(keys) < 2:
+        return
+    fig.renderers = [r for r in fig.renderers if r.id not in keys]
+    fig.renderers.append(Span(location=None, renderers=list(keys.values()), visible=False,
+                              name=f"{fig.name}_legend_keys"))
+
+
+def _draws_nothing(renderer: GlyphRenderer) -> bool:
+    columns = renderer.data_source.data.values()
+    numbers = [v for col in columns for v in col if not isinstance(v, str)]
+    return bool(numbers) and all(isinstance(v, float) and math.isnan(v) for v in numbers)
 
 
 def polar_figures() -> dict:

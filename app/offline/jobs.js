@@ -6,6 +6,12 @@
  *   c.start(job);       // its worker (none in a browser without workers: then on the page)
  *   c.request(input);   // the newest request wins (starts the worker if not yet started,
  *                       // with this job in its code)
+ *   c.runHere(input);   // a job known to be short: run now on the page's thread and drawn
+ *                       // at once (no message, no frame between the key and the drawing);
+ *                       // queued as ``request`` when a job runs or waits, or when the last
+ *                       // one run here took over HERE_MS
+ *   c.warmHere(input, n);  // run n times on the page's thread (V8 compiles and optimises
+ *                       // the kernel there before the first ``runHere``); the last result
  *
  * One job at a time per channel; a newer request waits for the running job, or stops it
  * (the worker is replaced) when that job has run longer than RESTART_AFTER_MS: the reader
@@ -14,6 +20,7 @@
 (function (root) {
   "use strict";
   var RESTART_AFTER_MS = 300;
+  var HERE_MS = 30;  // the longest a job may hold the page's thread (runHere)
   var WORKER_SCRIPTS = ["mp-kernel_inputs", "mp-kernel_rhs", "mp-kernel_dopri5", "mp-kernel",
                         "mp-solvers", "mp-arrays"];
   var WORKER_CODE =
@@ -28,6 +35,7 @@
   function Channel(kind, draw, busy) {
     this.kind = kind; this.draw = draw; this.busy = busy;
     this.worker = null; this.inFlight = null; this.pending = null; this.started = false;
+    this.hereMs = 0;
   }
 
   /** A new worker; with ``job``, the worker runs it as soon as its scripts are read. A
@@ -80,11 +88,28 @@
       return;
     }
     setTimeout(function () {
-      var t0 = Date.now(), r;
-      try { r = root.MicropillarArrays.job(self.kind, job.input); }
-      catch (error) { r = {error: error.message}; }
+      var t0 = Date.now(), r = runOnPage(self.kind, job.input);
       self.finished(job.id, r, Date.now() - t0);
     }, 0);
+  };
+
+  function runOnPage(kind, input) {
+    try { return root.MicropillarArrays.job(kind, input); }
+    catch (error) { return {error: error.message}; }
+  }
+  Channel.prototype.runHere = function (input) {
+    if (this.inFlight || this.pending || this.hereMs > HERE_MS) {
+      if (!this.inFlight && !this.pending) this.hereMs = 0;  // the next one tries the page
+      this.request(input);
+      return;
+    }
+    var t0 = Date.now(), r = runOnPage(this.kind, input);
+    this.hereMs = Date.now() - t0;
+    this.draw(r, this.hereMs, input);
+  };
+  Channel.prototype.warmHere = function (input, n) {
+    for (var i = 0, r; i < n; i++) r = runOnPage(this.kind, input);
+    return r;
   };
 
   Channel.prototype.finished = function (id, result, ms) {
@@ -96,5 +121,5 @@
     this.draw(result, ms, input);
   };
 
-  root.MicropillarJobs = {Channel: Channel, RESTART_AFTER_MS: RESTART_AFTER_MS};
+  root.MicropillarJobs = {Channel: Channel, RESTART_AFTER_MS: RESTART_AFTER_MS, HERE_MS: HERE_MS};
 }(this));

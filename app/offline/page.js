@@ -26,10 +26,9 @@
 (function () {
   "use strict";
   var CONFIG = JSON.parse(document.getElementById("mp-config").textContent);
-  var KERNEL = window.MicropillarKernel;
-  var VIEWS = window.MicropillarViews;
+  var KERNEL = window.MicropillarKernel, VIEWS = window.MicropillarViews;
   var CONTROLS = CONFIG.controls;
-  var MAX_STEPS = 1000000;
+  var MAX_STEPS = 1000000, HERE_STEPS = 2000;  // a contact this short: shortContact
 
   // ------------------------------------------------------------ state and fragment
   var FRAGMENT = window.MicropillarFragment;
@@ -135,9 +134,7 @@
     drawn: 0, result: null, polar: null, polarDrawn: 0, uniform: null, uniformDrawn: 0,
     keyToSupportMs: keyClock.times
   };
-
   function range(fig, which, lohi) { models.range(fig, which, lohi); }
-
   function drawSupport(r, ms) {
     if (r.error) {
       later.put("headline", function () {
@@ -209,10 +206,17 @@
     later.put("headline", writeHeadline);
     later.put("uniform-drawn", function () {
       explorer.uniformDrawn += 1;
+      if (explorer.uniformDrawn === 1) setTimeout(warmUp, 0);
       document.documentElement.setAttribute("data-uniform", String(explorer.uniformDrawn));
     });
   }
 
+  function warmUp() {  // the kernel and the support's views compiled on the page (shortContact)
+    var input = contactInput(state), r = shortContact(input) && contactChannel.warmHere(input, 4);
+    if (!r || r.error) return;
+    VIEWS.sceneData(r.series, r.params.theta0, CONFIG); VIEWS.forceData(r.series);
+    VIEWS.energyFrames(r.series, CONFIG); VIEWS.supportFrames(r.series, r.params, CONFIG);
+  }
   function reducedMotion() {
     return !!(window.matchMedia && window.matchMedia("(prefers-reduced-motion: reduce)").matches);
   }
@@ -253,13 +257,17 @@
     keyClock.take();  // the key press (if any) whose redraw is timed
     var input = contactInput(state), early = first ? first.take(input) : undefined;
     first = null;
-    if (early === undefined) contactChannel.request(input);
+    if (early === undefined) contactChannel[shortContact(input) ? "runHere" : "request"](input);
     else if (early) drawSupport.apply(null, early);  // else drawn when it comes
     if (arraysKey(state) !== lastArrays) {
       lastArrays = arraysKey(state);
       arraysDue = true;  // requested once the support is drawn (countDrawn)
     }
     later.put("map", drawMap);
+  }
+  /** A theta0 step from a short contact (a few contacts from the last beta, 1-5 ms). */
+  function shortContact(input) {  // computed on the page's thread, drawn in the key's frame
+    return !!input.previous && explorer.result.stats.n_steps <= HERE_STEPS;
   }
   /** The orientation sweep and the uniform array for the current state, after the
    * support's contact is drawn: on a small machine their workers would slow it down. */

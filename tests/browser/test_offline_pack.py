@@ -71,6 +71,44 @@ def test_a_slider_key_press_changes_the_plotted_data(offline):
     assert offline.errors == []
 
 
+#: At a key press's first animation frame (registered as the key goes down, so it runs
+#: before the figures' paint in that frame): the state's theta0 and the support's data then.
+AT_THE_KEYS_FRAME = """() => { window.atKeysFrame = null;
+  window.addEventListener("keydown", () => requestAnimationFrame(() => {
+    const source = (name) => [...Bokeh.documents[0].all_models].find((m) => m.name === name
+        && m.data !== undefined && m.selected !== undefined);
+    window.atKeysFrame = {theta0: explorer.result.params.theta0,
+      x1: Array.from(source("orbit").data.x1), F_x: Array.from(source("forces").data.F_x)};
+  }), {capture: true, once: true}); }"""
+
+
+def test_a_theta0_key_press_is_drawn_in_the_keys_own_frame(offline):
+    """A theta0 step at the same springs and load (a few contacts from the last beta) is
+    computed on the page's thread as the key goes down: the frame that shows the slider's
+    new place paints the support's figures with the new contact's data (the scene's path,
+    Fig. 7's forces), with no frame of the old data between (docs/offline.md)."""
+    offline.open()
+    offline.page.wait_for_function(f"{POLAR} >= 1 && {UNIFORM} >= 1", timeout=120_000)
+    offline.page.wait_for_timeout(200)  # the kernel compiled on the page (jobs.js warmHere)
+    handle = offline.page.locator(".noUi-handle").nth(3)
+    handle.focus()
+    for step, key in enumerate(("ArrowRight", "ArrowRight", "ArrowLeft"), start=1):
+        offline.page.evaluate(AT_THE_KEYS_FRAME)
+        handle.press(key)
+        offline.page.wait_for_function("window.atKeysFrame !== null && !explorer.pending()")
+        seen = offline.page.evaluate("window.atKeysFrame")
+        deg = 90 + (1 if step != 2 else 2)
+        assert seen["theta0"] == pytest.approx(math.radians(deg), rel=1e-12)
+        want = offline.page.evaluate(
+            f"(() => {{ const r = explorer.simulate({{k_r: 3, k_theta: 0.01, F_N: 1, theta0: "
+            f"{deg} * Math.PI / 180, beta: explorer.result.params.beta, samples: 400}}); return "
+            "{x: Array.from(r.series.x), F_x: Array.from(r.series.F_x)}; })()")
+        assert seen["x1"] == pytest.approx(want["x"][1:], abs=1e-12)
+        assert seen["F_x"] == pytest.approx(want["F_x"], abs=1e-12)
+    assert offline.page.evaluate("explorer.keyToSupportMs.length") == 3
+    assert offline.errors == []
+
+
 def test_a_link_opens_in_its_state(offline):
     offline.open("#k_r=0.03&k_theta=0.03&F_N=3&theta0_deg=120")
     state = offline.page.evaluate("explorer.state")
