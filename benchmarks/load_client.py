@@ -173,7 +173,9 @@ class Session(SliderMoves):
         self.orbit = next(m for m in self.doc.models if getattr(m, "name", None) == "orbit")
         # The headline above the plots names the support's theta0 ("every support at
         # theta0 = 90°"): what every visitor sees (the folded tables are written when opened).
-        self.readout = self._find("headline")
+        # It is written in place (``app.views.text_div.LiveHTML``): its HTML lives in the
+        # component's data model.
+        self.readout = self._find("headline").data
         self.watched.add(self.readout.id)
         self.open_s = time.perf_counter() - start
         self._reader = asyncio.create_task(self._read_loop())

@@ -34,7 +34,7 @@ class SliderMoves:
     page's ``sliders``, ``readout``, the pushes counted and ``_flush``)."""
 
     def _readout_shows(self, degrees: float) -> bool:
-        return f"θ₀ = {degrees:g}°" in (self.readout.text or "")
+        return f"θ₀ = {degrees:g}°" in (self.readout.html or "")
 
     async def _set(self, name: str, value: float) -> float:
         """Move the slider; when its message had left (``time.perf_counter``)."""

@@ -1,13 +1,16 @@
-"""A text the page rewrites at every slider move (the headline, the regime's words), as a
-plain Bokeh ``Div``: writing its HTML is one property change (~0.06 ms of the server),
-where a Panel text pane renders, escapes and restyles it again (~2.6 ms as HTML, ~4 ms as
-Markdown, measured in process).
+"""A text the page rewrites at every slider move (the headline, the regime's words).
+
+Written in place: ``LiveHTML`` is a ``JSComponent`` whose ``html`` the browser puts into its
+element when it changes, and nothing else. A Bokeh ``Div`` would re-render on a new text
+and lay its whole root out again (in this page: every figure measured and repainted, ~60 ms
+of the browser's time per move), and a Panel text pane also renders, escapes and restyles
+the text on the server (~2.6 ms as HTML, ~4 ms as Markdown, measured in process).
 """
 from __future__ import annotations
 
-import panel as pn
-from bokeh.models import Div
+import param
 from markdown_it import MarkdownIt  # Panel's own Markdown renderer
+from panel.custom import JSComponent
 
 _MARKDOWN = MarkdownIt()
 
@@ -17,21 +20,37 @@ def markdown_html(text: str) -> str:
     return _MARKDOWN.render(text)
 
 
+class LiveHTML(JSComponent):
+    """``html`` shown as it is; a new ``html`` replaces the element's content in place."""
+
+    html = param.String(default="", doc="the HTML shown (trusted: written by the app)")
+
+    _esm = """
+    export function render({ model }) {
+      const box = document.createElement("div");
+      box.className = "live-html";
+      box.innerHTML = model.html;
+      model.on("html", () => { box.innerHTML = model.html; });
+      return box;
+    }
+    """
+    _stylesheets = [".live-html p { margin: 0; }"]
+
+
 class TextDiv:
-    """A ``Div`` with ``html`` in a Panel layout (``pane``); ``text`` reads and writes it
-    (written only when it changes)."""
+    """``html`` in a Panel layout (``pane``, a ``LiveHTML`` with ``css_class``); ``text``
+    reads and writes it (written only when it changes)."""
 
     def __init__(self, html: str, css_class: str, styles: dict | None = None,
                  margin=(0, 5)):
-        self.div = Div(text=html, css_classes=[css_class], styles=styles or {},
-                       margin=margin, sizing_mode="stretch_width")
-        self.pane = pn.pane.Bokeh(self.div, sizing_mode="stretch_width", margin=0)
+        self.pane = LiveHTML(html=html, css_classes=[css_class], styles=styles or {},
+                             margin=margin, sizing_mode="stretch_width")
 
     @property
     def text(self) -> str:
-        return self.div.text
+        return self.pane.html
 
     @text.setter
     def text(self, html: str) -> None:
-        if html != self.div.text:
-            self.div.text = html
+        if html != self.pane.html:
+            self.pane.html = html

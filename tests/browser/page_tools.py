@@ -377,6 +377,18 @@ def model_value(page, type_pattern: str, attribute: str = "value", css_class: st
         }""", [type_pattern, attribute, css_class])
 
 
+def live_html(page, css_class: str) -> str:
+    """The HTML of the text written in place with ``css_class`` (``LiveHTML``: the
+    headline, the regime's words), "" if there is none."""
+    return page.evaluate(
+        """(cls) => {
+          for (const m of Bokeh.documents[0].all_models)
+            if ((m.css_classes || []).includes(cls) && m.data && "html" in m.data)
+              return String(m.data.html);
+          return "";
+        }""", css_class)
+
+
 def wait_for(page, predicate, timeout_s: float = 20.0, what="condition") -> None:
     """Poll ``predicate()`` every 100 ms of page time; fail the test (naming ``what``, or
     what ``what()`` says then) after ``timeout_s`` seconds."""

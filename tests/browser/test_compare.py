@@ -56,7 +56,7 @@ def test_an_address_with_a_shows_both_states(page, page_log, app_url):
     assert a != b and diff == pytest.approx(b - a, rel=2e-3, abs=2e-4), row
     assert "k_r = 0.5" in text and "k_r = 3" in text
     # The headline: a second line with A's friction and B − A of the fixed arrays.
-    headline = pt.model_value(page, r"^Div$", "text", "headline") or ""
+    headline = pt.live_html(page, "headline")
     assert "A (pinned)" in headline and f"B − A = {row[3]}," in html_module.unescape(
         headline), (headline, row)  # the readout's B − A, as text
     # The polar diagrams: A's curves beside B's.

@@ -16,11 +16,7 @@ TABS = (("Array", "array"), ("Orientation", "polar"), ("Regime map", "map"),
 
 
 def _headline(page) -> str:
-    return page.evaluate("""() => {
-      for (const m of Bokeh.documents[0].all_models)
-        if ((m.css_classes || []).includes("headline")) return String(m.text ?? m.object ?? "");
-      return "";
-    }""")
+    return pt.live_html(page, "headline")
 
 
 def test_the_headline_settles_on_every_tab(page, page_log, app_url):
