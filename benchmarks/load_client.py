@@ -173,7 +173,7 @@ class Session(SliderMoves):
         self.orbit = next(m for m in self.doc.models if getattr(m, "name", None) == "orbit")
         # The headline above the plots names the support's theta0 ("every support at
         # theta0 = 90°"): what every visitor sees (the folded tables are written when opened).
-        # It is written in place (``app.views.text_div.LiveHTML``): its HTML lives in the
+        # It is written in place (``app.views.live_text.LiveHTML``): its HTML lives in the
         # component's data model.
         self.readout = self._find("headline").data
         self.watched.add(self.readout.id)

@@ -92,7 +92,7 @@ def test_without_a_result_the_text_says_it_is_being_computed():
 def test_the_page_s_regime_panel_follows_the_computed_support():
     from app.state import ExplorerState
     from app.views import Dashboard
-    from app.views.text_div import markdown_html
+    from app.views.live_text import markdown_html
 
     page = Dashboard(ExplorerState())
     page.state.param.update(k_r=0.01, k_theta=0.01, F_N=10.0)

@@ -20,7 +20,7 @@ from ..motion_words import change_words, regime_markdown
 from ..texts import AVERAGE_NAMES, FELT_AVERAGE, FELT_WORDS
 from .compare_tables import difference
 from .shown import WhenShown
-from .text_div import TextDiv, markdown_html
+from .live_text import LiveText, markdown_html
 
 TABLE_CSS = ("table {border-collapse: collapse; width: 100%;} "
              "td, th {padding: 2px 6px; line-height: 1.25;}")
@@ -157,7 +157,7 @@ class ReadoutsView(pn.viewable.Viewer):
         style = {"font-size": "0.92em"}
         compact = [TABLE_CSS]
         wide = dict(sizing_mode="stretch_width", margin=(0, 5))
-        self.regime = TextDiv(markdown_html(regime_markdown(self.state.regime,
+        self.regime = LiveText(markdown_html(regime_markdown(self.state.regime,
                                                             self.results.support)),
                               "readout-regime", styles=style)
         self.fixed_pane = pn.pane.Markdown(fixed_markdown(self.results.support),
@@ -264,7 +264,7 @@ class HeadlineView(pn.viewable.Viewer):
 
     def __init__(self, **params):
         super().__init__(**params)
-        self.headline = TextDiv("", "headline", margin=(2, 10),
+        self.headline = LiveText("", "headline", margin=(2, 10),
                                 styles={"font-size": "1.15em", "font-weight": "600"})
         self.pane = self.headline.pane
         self._write()

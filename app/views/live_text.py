@@ -37,7 +37,7 @@ class LiveHTML(JSComponent):
     _stylesheets = [".live-html p { margin: 0; }"]
 
 
-class TextDiv:
+class LiveText:
     """``html`` in a Panel layout (``pane``, a ``LiveHTML`` with ``css_class``); ``text``
     reads and writes it (written only when it changes)."""
 
