@@ -378,15 +378,11 @@ def model_value(page, type_pattern: str, attribute: str = "value", css_class: st
 
 
 def live_html(page, css_class: str) -> str:
-    """The HTML of the text written in place with ``css_class`` (``LiveHTML``: the
-    headline, the regime's words), "" if there is none."""
-    return page.evaluate(
-        """(cls) => {
-          for (const m of Bokeh.documents[0].all_models)
-            if ((m.css_classes || []).includes(cls) && m.data && "html" in m.data)
-              return String(m.data.html);
-          return "";
-        }""", css_class)
+    """The HTML of the text written in place with ``css_class`` (``LiveHTML``), or ""."""
+    return page.evaluate("""(cls) => { for (const m of Bokeh.documents[0].all_models)
+        if ((m.css_classes || []).includes(cls) && m.data && "html" in m.data)
+          return String(m.data.html);
+      return ""; }""", css_class)
 
 
 def wait_for(page, predicate, timeout_s: float = 20.0, what="condition") -> None:
