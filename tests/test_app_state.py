@@ -295,7 +295,7 @@ def test_a_preset_changes_the_orbit_and_the_regime_text(dashboard):
     before = _orbit(dashboard)
     dashboard.state.apply_preset("soft")
     assert not np.allclose(before, _orbit(dashboard))
-    assert "Soft" in dashboard.readouts.regime.text
+    assert "Soft" in dashboard.readouts.regime.html
     dashboard.state.reset()
 
 

@@ -96,7 +96,7 @@ def test_the_page_s_regime_panel_follows_the_computed_support():
 
     page = Dashboard(ExplorerState())
     page.state.param.update(k_r=0.01, k_theta=0.01, F_N=10.0)
-    text = page.readouts.regime.text
+    text = page.readouts.regime.html
     assert text == markdown_html(regime_markdown("soft", page.results.support))
     assert text.startswith("<p><strong>Soft (both springs soft).</strong>")
     assert f"{page.results.support.result.r_max:.3g} r₀" in text

@@ -93,7 +93,7 @@ def test_a_tab_not_on_screen_gets_nothing_until_it_is_shown(pool):
     assert {"orbit", "forces", "support_frames"} <= _changed_sources(events)
     series = page.page.results.support.series
     np.testing.assert_allclose(page.source("forces").data["F_x"], series.F_x)
-    assert "100" in page.page.readouts.regime.text  # "turned from 100° ..."
+    assert "100" in page.page.readouts.regime.html  # "turned from 100° ..."
 
 
 def test_the_downloads_are_named_after_the_controls_when_asked_for(pool):

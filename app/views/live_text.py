@@ -35,22 +35,3 @@ class LiveHTML(JSComponent):
     }
     """
     _stylesheets = [".live-html p { margin: 0; }"]
-
-
-class LiveText:
-    """``html`` in a Panel layout (``pane``, a ``LiveHTML`` with ``css_class``); ``text``
-    reads and writes it (written only when it changes)."""
-
-    def __init__(self, html: str, css_class: str, styles: dict | None = None,
-                 margin=(0, 5)):
-        self.pane = LiveHTML(html=html, css_classes=[css_class], styles=styles or {},
-                             margin=margin, sizing_mode="stretch_width")
-
-    @property
-    def text(self) -> str:
-        return self.pane.html
-
-    @text.setter
-    def text(self, html: str) -> None:
-        if html != self.pane.html:
-            self.pane.html = html

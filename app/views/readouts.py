@@ -20,7 +20,7 @@ from ..motion_words import change_words, regime_markdown
 from ..texts import AVERAGE_NAMES, FELT_AVERAGE, FELT_WORDS
 from .compare_tables import difference
 from .shown import WhenShown
-from .live_text import LiveText, markdown_html
+from .live_text import LiveHTML, markdown_html
 
 TABLE_CSS = ("table {border-collapse: collapse; width: 100%;} "
              "td, th {padding: 2px 6px; line-height: 1.25;}")
@@ -157,9 +157,10 @@ class ReadoutsView(pn.viewable.Viewer):
         style = {"font-size": "0.92em"}
         compact = [TABLE_CSS]
         wide = dict(sizing_mode="stretch_width", margin=(0, 5))
-        self.regime = LiveText(markdown_html(regime_markdown(self.state.regime,
-                                                            self.results.support)),
-                              "readout-regime", styles=style)
+        self.regime = LiveHTML(html=markdown_html(regime_markdown(self.state.regime,
+                                                                  self.results.support)),
+                               css_classes=["readout-regime"], styles=style, margin=(0, 5),
+                               sizing_mode="stretch_width")
         self.fixed_pane = pn.pane.Markdown(fixed_markdown(self.results.support),
                                            css_classes=["readout-fixed"], styles=style,
                                            stylesheets=compact, **wide)
@@ -215,7 +216,7 @@ class ReadoutsView(pn.viewable.Viewer):
 
     def _write_regime(self) -> None:
         # Written from the computed support (its own regime): numbers and words agree.
-        self.regime.text = markdown_html(regime_markdown(self.state.regime,
+        self.regime.html = markdown_html(regime_markdown(self.state.regime,
                                                          self.results.support))
 
     @param.depends("results.uniform", "results.errors", "state.average", watch=True)
@@ -252,7 +253,7 @@ class ReadoutsView(pn.viewable.Viewer):
                                        and not self.details.collapsed)
 
     def __panel__(self):
-        return pn.Column(self.regime.pane, self.compare_pane, self.details, css_classes=["readouts", "side-column"],
+        return pn.Column(self.regime, self.compare_pane, self.details, css_classes=["readouts", "side-column"],
                          width=300, margin=0)
 
 
@@ -264,9 +265,8 @@ class HeadlineView(pn.viewable.Viewer):
 
     def __init__(self, **params):
         super().__init__(**params)
-        self.headline = LiveText("", "headline", margin=(2, 10),
-                                styles={"font-size": "1.15em", "font-weight": "600"})
-        self.pane = self.headline.pane
+        self.pane = LiveHTML(css_classes=["headline"], margin=(2, 10), sizing_mode="stretch_width",
+                             styles={"font-size": "1.15em", "font-weight": "600"})
         self._write()
         self._for_tab()
 
@@ -302,12 +302,12 @@ class HeadlineView(pn.viewable.Viewer):
                                    a_uniform, fixed, uniform)
             html += ("<br><span class='headline-compare' style='font-weight: 400; "
                      f"font-size: 0.85em'>{clause}.</span>")
-        self.headline.text = html
+        self.pane.html = html
 
     @property
     def text(self) -> str:
         """The headline's HTML."""
-        return self.headline.text
+        return self.pane.html
 
     def __panel__(self):
         return self.pane
