@@ -79,8 +79,11 @@ if (st === undefined) {
     if (!force && now - st.ui_t < ui_ms) return;
     st.ui_t = now;
     const i = frame.value;
-    if (slider.value !== i) slider.setv({value: i}, {sync: false});
     readout.setv({html: `frame ${i + 1} / ${n} · ${label} = ${timeline.data.t[i].toFixed(2)}`}, {sync: false});
+    // A slider view built but not drawn yet (a page sent in a patch is drawn over several
+    // turns) throws on a new value (BokehJS's _update_title before render); the model keeps
+    // the value and its first draw shows it. Uncaught, it would stop the timer.
+    try { if (slider.value !== i) slider.setv({value: i}, {sync: false}); } catch (error) {}
   };
   // Frames shown; the timer keeps its fractional position, a step or a jump does not.
   st.show = (f, force) => { if (frame.value !== f) { frame.setv({value: f}, {sync: false}); st.drawn += 1; } st.ui(force); };

@@ -91,6 +91,22 @@ def test_array_plays_and_the_contact_count_changes(pages, open_page):
     assert f"N_c = {int(motion.N_c[state['frame']])}</b>" in readout
 
 
+def test_the_array_plays_on_while_its_slider_is_not_drawn_yet(pages, open_page):
+    """A page sent in a patch is drawn over several turns: a player may start before its
+    frame slider is drawn, whose view then throws on a new value (BokehJS). The animation
+    plays on and no error reaches the page (``open_page`` fails on a page error)."""
+    urls, _, _ = pages
+    page = open_page(urls["array"])
+    # The slider's view as before its first draw (render() makes its title element).
+    page.evaluate("""() => { const m = Bokeh.documents[0].get_model_by_name("array_player_slider");
+        Bokeh.index.find_one(m).title_el = undefined; }""")
+    page.get_by_role("button", name="▶ Play").click()
+    page.wait_for_function("() => Bokeh.documents[0].get_model_by_name('array_player_frame')"
+                           ".value > 20", timeout=10_000)
+    state = _state(page, "array_player")
+    assert state["playing"] and state["slider"] > 0, state  # the model follows, drawn or not
+
+
 def test_energy_bars_follow_playback_and_balance(pages, open_page):
     urls, _, result = pages
     page = open_page(urls["support"])
