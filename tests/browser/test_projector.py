@@ -11,6 +11,8 @@ drawn plot area) and their annotations' boxes.
 """
 from __future__ import annotations
 
+import re
+
 import pytest
 
 from app.figures.common import MIN_TEXT_PX, PROJECTOR_SCALE
@@ -130,9 +132,15 @@ def _overlap(a, b) -> bool:
             and a[1] < b[1] + b[3] and b[1] < a[1] + a[3])
 
 
-def _show(page, url: str, tab: str) -> dict:
-    """Open ``url`` on ``tab``; the visible figures once the page is at rest."""
-    pt.wait_for_app(page, f"{url}&tab={tab}" if "?" in url else f"{url}?tab={tab}", 90_000)
+def _show(page, url: str, tab: str, switch: bool = False) -> dict:
+    """Open ``url`` on ``tab`` (``switch``: the page shows ``url`` already; its tab bar
+    opens ``tab``, as a class goes from tab to tab); the visible figures at rest."""
+    if switch:
+        pt.open_tab(page, "^" + re.escape(TABS[tab][0]))
+        pt.wait_for(page, lambda: f"tab={tab}" in page.url or tab == "support",
+                    what=f"the {tab} tab to open")
+    else:
+        pt.wait_for_app(page, f"{url}&tab={tab}" if "?" in url else f"{url}?tab={tab}", 90_000)
     main = TABS[tab][1]
     if main:
         pt.wait_for_plot(page, main, 60_000)
@@ -142,24 +150,26 @@ def _show(page, url: str, tab: str) -> dict:
 
 
 class Shown:
-    """The module's page of a screen size, opened on the address and tab a test asks for.
-    The tests that only read it leave it as it was opened: a test asking for the address
-    and tab it shows already reads it as it is instead of opening it again."""
+    """The module's page of a screen size, on the address and tab a test asks for. A page
+    opened on an address goes from tab to tab with its tab bar; the tests that only read it
+    leave it as it was shown, so a test asking for the address and tab it shows reads it as
+    it is."""
 
     def __init__(self, page):
-        self.page, self.shown, self.figures = page, None, None
+        self.page, self.url, self.tab, self.figures = page, None, None, None
 
     def show(self, url: str, tab: str) -> dict:
-        """The page opened on ``url`` at ``tab``; its visible figures at rest."""
-        if (url, tab) != self.shown:
-            self.shown = None  # an open that fails leaves nothing taken as shown
-            self.figures = _show(self.page, url, tab)
-            self.shown = (url, tab)
+        """The page on ``url`` at ``tab``; its visible figures at rest."""
+        if (url, tab) != (self.url, self.tab):
+            switch, self.tab = url == self.url, None  # a failed show leaves nothing taken
+            self.url = None
+            self.figures = _show(self.page, url, tab, switch)
+            self.url, self.tab = url, tab
         return self.figures
 
     def changed(self) -> None:
         """The page was changed (scrolled, clicked): it is opened again when next asked."""
-        self.shown = None
+        self.url = self.tab = None
 
 
 @pytest.fixture(scope="module", params=list(SCREENS))
@@ -167,8 +177,8 @@ def screen(request, browser, app_url):
     """Per screen size: every tab's figures in normal mode, and a projector-mode page."""
     size = SCREENS[request.param]
     normal = browser.new_context(viewport=size)
-    page = normal.new_page()
-    measured = {tab: _show(page, app_url, tab) for tab, (_, main) in TABS.items() if main}
+    shown = Shown(normal.new_page())
+    measured = {tab: shown.show(app_url, tab) for tab, (_, main) in TABS.items() if main}
     normal.close()
     projected = browser.new_context(viewport=size)
     projected.set_default_timeout(60_000)
