@@ -29,13 +29,6 @@ The touches, and what each buys:
    The same page code gives the "Figure (SVG)" buttons ``window.mp_export_svg``: BokehJS
    offers a figure's SVG only through its drawn view (what the toolbar's save tool does
    for a figure drawn in SVG); on another stack the buttons point to the save tool.
-4. **BokehJS's style reads at each paint** (``PAINT_MEMO_JS``, in the page and in the
-   offline explorer): every visual property of a figure's annotations, axes and titles
-   asks ``getComputedStyle`` for its CSS variable (``--bk-line-color``...) at every paint,
-   ~1 000 reads per redraw of the support's figures, each forcing a style pass after the
-   page changed. No page here sets those variables; a value read is kept until the next
-   animation frame. What it buys: ``benchmarks/bench_offline.py`` and
-   ``docs/performance-record.md``; a test counts the reads per key press.
 """
 from __future__ import annotations
 
@@ -232,42 +225,10 @@ window.mp_export_svg = function (names, prefix) {
 """
 
 
-PAINT_MEMO_JS = """
-// BokehJS reads each visual's CSS variable at every paint (VisualProperties._get_css_value:
-// getComputedStyle(view.el)); a value read is kept until the next animation frame.
-(() => {
-  let visual = null;
-  try { visual = Bokeh.require("core/visuals/visual"); } catch (error) { return; }
-  const proto = visual && visual.VisualProperties && visual.VisualProperties.prototype;
-  const read = proto && proto._get_css_value;
-  if (typeof read !== "function" || read.mp_memo) return;
-  let memo = new WeakMap(), clearing = false;
-  const memoised = function (name) {
-    const el = this.obj && this.obj.el;
-    if (el == null || typeof el !== "object") return read.call(this, name);
-    let values = memo.get(el);
-    if (values === undefined) memo.set(el, values = new Map());
-    const key = this.css_prefix + name;
-    let value = values.get(key);
-    if (value === undefined) values.set(key, value = read.call(this, name));
-    if (!clearing) {
-      clearing = true;
-      requestAnimationFrame(() => { memo = new WeakMap(); clearing = false; });
-    }
-    return value;
-  };
-  memoised.mp_memo = true;
-  memoised.mp_original = read;
-  proto._get_css_value = memoised;
-})();
-"""
-
-
 def guard_markup_views(doc) -> None:
-    """Install ``MARKUP_GUARD_JS`` and ``PAINT_MEMO_JS`` in ``doc``'s page when it is ready
-    (tested stack only)."""
+    """Install ``MARKUP_GUARD_JS`` in ``doc``'s page when it is ready (tested stack only)."""
     if doc is None or not on_tested_stack():
         return
     from bokeh.models import CustomJS
 
-    doc.js_on_event("document_ready", CustomJS(code=MARKUP_GUARD_JS + PAINT_MEMO_JS))
+    doc.js_on_event("document_ready", CustomJS(code=MARKUP_GUARD_JS))

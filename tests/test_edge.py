@@ -88,34 +88,6 @@ def test_canary_panels_text_views_make_their_container_when_drawn():
     assert "this.container = (0, dom_1.div)();" in view
 
 
-def test_canary_bokehjs_reads_a_visuals_css_variable_with_getcomputedstyle():
-    """Touch 4 replaces ``VisualProperties._get_css_value``, which BokehJS exposes through
-    ``Bokeh.require``: it must still read ``getComputedStyle(this.obj.el)`` with the
-    visual's ``css_prefix`` (a value that depends on nothing else can be kept a frame)."""
-    import bokeh
-
-    bundle = (Path(bokeh.__file__).parent / "server" / "static" / "js" / "bokeh.js"
-              ).read_text(encoding="utf-8")
-    assert "main.require = require;" in bundle
-    start = bundle.index("/* core/visuals/visual.js */")
-    method = bundle[bundle.index("_get_css_value(name) {", start):][:200]
-    assert "const style = getComputedStyle(this.obj.el);" in method, method
-    assert "return style.getPropertyValue(`${this.css_prefix}${name}`);" in method, method
-
-
-def test_the_offline_explorer_keeps_bokehs_style_reads_on_the_tested_stack(monkeypatch):
-    from app.offline import pack
-
-    pack._base_page.cache_clear()
-    assert edge.PAINT_MEMO_JS in pack.page_html()
-    monkeypatch.setattr(pack.bokeh, "__version__", "9.9.9")
-    pack._base_page.cache_clear()
-    try:
-        assert edge.PAINT_MEMO_JS not in pack.page_html()
-    finally:
-        pack._base_page.cache_clear()
-
-
 def test_the_text_view_guard_is_in_the_page_on_the_tested_stack(monkeypatch):
     from bokeh.document import Document
     from bokeh.models import CustomJS
@@ -123,8 +95,7 @@ def test_the_text_view_guard_is_in_the_page_on_the_tested_stack(monkeypatch):
     doc = Document()
     edge.guard_markup_views(doc)
     callbacks = doc.callbacks.js_event_callbacks.get("document_ready", [])
-    assert [c.code for c in callbacks if isinstance(c, CustomJS)] == [
-        edge.MARKUP_GUARD_JS + edge.PAINT_MEMO_JS]
+    assert [c.code for c in callbacks if isinstance(c, CustomJS)] == [edge.MARKUP_GUARD_JS]
     monkeypatch.setattr(edge, "versions", lambda: dict(edge.TESTED, bokeh="9.9.9"))
     other = Document()
     edge.guard_markup_views(other)

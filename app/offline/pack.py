@@ -26,7 +26,6 @@ from importlib import resources
 from pathlib import Path
 from urllib.parse import urlencode
 
-import bokeh
 from bokeh.document import Document
 from bokeh.embed import file_html
 from bokeh.layouts import column, row
@@ -42,7 +41,6 @@ from ..figures.access_js import PAGE_SCRIPT, mark_figures
 from ..figures.arrays import AVERAGE_COLUMNS
 from ..texts import AVERAGE_NAMES, FELT_AVERAGE, MECHANISMS
 from ..defaults import TABS
-from ..edge import PAINT_MEMO_JS, TESTED
 from ..worker import UNIFORM_TOL
 from . import figures as views
 from .tabs import LATER_ID, later_json, later_tab, map_tab, polar_tab
@@ -272,9 +270,7 @@ def _base_page() -> str:
     html = _without_fetches(file_html(doc, resources=INLINE, title=TITLE,
                                       template=PAGE_TEMPLATE))
     here = resources.files(__package__)
-    # BokehJS's style reads kept for a frame (app.edge, touch 4), on the tested BokehJS only.
-    memo = _script("mp-paint-memo", PAINT_MEMO_JS) if bokeh.__version__ == TESTED["bokeh"] else ""
-    extra = (memo + _script("mp-config", json.dumps(cfg).replace("</", "<\\/"), "application/json")
+    extra = (_script("mp-config", json.dumps(cfg).replace("</", "<\\/"), "application/json")
              + _script(LATER_ID, later_json(later, doc), "application/json")
              + "".join(_script(f"mp-{name}", (here / f"{name}.js").read_text(encoding="utf-8"))
                        for name in SCRIPTS)

@@ -109,43 +109,6 @@ def test_a_theta0_key_press_is_drawn_in_the_keys_own_frame(offline):
     assert offline.errors == []
 
 
-#: Count the page's getComputedStyle calls from now (``restore``: BokehJS's own reads first).
-_COUNT_STYLE_READS = """([restore]) => {
-  const proto = Bokeh.require("core/visuals/visual").VisualProperties.prototype;
-  if (restore) proto._get_css_value = proto._get_css_value.mp_original;
-  const read = window.mp_read_style = window.mp_read_style || window.getComputedStyle;
-  window.mp_style_reads = 0;
-  window.getComputedStyle = function (...args) {
-    window.mp_style_reads += 1; return read.apply(this, args); };
-}"""
-#: ... until the key press is computed and drawn (three frames later).
-_STYLE_READS = """async () => {
-  while (explorer.pending()) await new Promise((r) => setTimeout(r, 20));
-  for (let i = 0; i < 3; i++) await new Promise((r) => requestAnimationFrame(r));
-  return window.mp_style_reads;
-}"""
-
-
-def test_bokehs_style_reads_are_kept_for_a_frame(offline):
-    """BokehJS asks getComputedStyle for every visual's CSS variable at every paint; the
-    page keeps a value read until the next frame (app.edge, PAINT_MEMO_JS): a key press's
-    redraw reads far fewer styles than without it."""
-    offline.open()
-    offline.page.wait_for_function(f"{POLAR} >= 1 && {UNIFORM} >= 1", timeout=120_000)
-    assert offline.page.evaluate("Bokeh.require('core/visuals/visual').VisualProperties"
-                                 ".prototype._get_css_value.mp_memo === true")
-    handle = offline.page.locator(".noUi-handle").nth(3)
-    handle.focus()
-    reads = {}
-    for restore, key in ((False, "ArrowRight"), (True, "ArrowLeft")):
-        offline.page.evaluate(_COUNT_STYLE_READS, [restore])
-        handle.press(key)
-        reads["without" if restore else "kept"] = offline.page.evaluate(_STYLE_READS)
-    print(f"style reads per key press: {reads}")
-    assert reads["without"] >= 200 and reads["kept"] <= 0.7 * reads["without"], reads
-    assert offline.errors == []
-
-
 def test_a_link_opens_in_its_state(offline):
     offline.open("#k_r=0.03&k_theta=0.03&F_N=3&theta0_deg=120")
     state = offline.page.evaluate("explorer.state")
