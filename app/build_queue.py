@@ -11,8 +11,11 @@ So a build step does not run where it is asked for: ``BuildQueue.enqueue`` puts 
 process's one queue (``build_queue()``), first in, first out, and a pump on the event loop
 hands ONE step to its session (Panel's ``pn.state.execute``: Bokeh's next tick, with the
 session's document locked and ``pn.state.curdoc`` set) and is scheduled again only once
-that step is done. Between two steps Tornado polls its sockets and answers what came in
-meanwhile; a burst of page opens delays a probe by a step or two, not by all of them.
+that step is done, ``STEP_GAP_S`` later. Between two steps Tornado polls its sockets and
+answers what came in meanwhile; a burst of page opens delays a probe by one step, not by
+all of them. (The gap: an HTTP request takes Tornado a few turns of the loop -- accept,
+read, answer --, and the two or three turns between a step and the next were not enough:
+a probe that came during a page's first step was answered only after its second.)
 
 * A step's continuation (``enqueue(..., first=True)``: the page's models after its
   objects) goes to the front: it follows its own first step within a turn or two, as
@@ -34,6 +37,10 @@ import panel as pn
 from tornado.ioloop import IOLoop
 
 log = logging.getLogger(__name__)
+
+#: Seconds between the end of a step and the next: the loop answers what came in meanwhile
+#: (a liveness probe needs well under a millisecond of it once it has its turns).
+STEP_GAP_S = 0.01
 
 
 def _ended(doc) -> bool:
@@ -73,10 +80,13 @@ class BuildQueue:
             self._steps.append((doc, step))
         self._arm()
 
-    def _arm(self) -> None:
+    def _arm(self, gap: float = 0.0) -> None:
         if not self._armed and self._handed is None and self._steps:
             self._armed = True
-            IOLoop.current().add_callback(self._pump)
+            if gap > 0:
+                IOLoop.current().call_later(gap, self._pump)
+            else:
+                IOLoop.current().add_callback(self._pump)
 
     def _pump(self) -> None:
         """Hand the first step of a live session to its session; reschedule on its end."""
@@ -108,7 +118,7 @@ class BuildQueue:
         finally:
             if self._handed is not None and self._handed[0] is token:
                 self._handed = None
-            self._arm()
+            self._arm(STEP_GAP_S)
 
     def _session_ended(self, session_context) -> None:
         """A session ended: its steps are dropped as they come up; if Bokeh had its next
