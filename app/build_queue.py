@@ -50,7 +50,8 @@ def _ended(doc) -> bool:
 
 
 class BuildQueue:
-    """One FIFO queue of build steps per server process, run one step per loop turn."""
+    """One FIFO queue of build steps per server process: one step at a time, each in a
+    turn of the event loop of its own, ``STEP_GAP_S`` after the last one ended."""
 
     def __init__(self):
         self._steps: deque = deque()   # (document, step)
