@@ -44,6 +44,7 @@ import urllib.error
 import urllib.request
 from pathlib import Path
 
+import numpy as np
 from tornado.httpclient import AsyncHTTPClient, HTTPRequest
 
 from checkout import helper
@@ -221,6 +222,8 @@ def run(requests: int = 20, out: Path | str = "bench-out", settle_s: float = 5.0
         "abuse": driven["abuse"],
         "visitor": visitor,
         "liveness": {"n": len(liveness), "max_s": max(liveness, default=float("nan")),
+                     "p95_s": float(np.percentile(liveness, 95)) if liveness else float("nan"),
+                     "seconds": [round(x, 4) for x in liveness],
                      "over_bound_or_failed": bad_liveness},
         "healthchecks": [{"seconds": s, "exit": c, "stderr": e} for s, c, e in checks.results],
         "server_errors": server_errors,
@@ -262,7 +265,8 @@ def markdown(r: dict) -> str:
         f"- abusive requests answered: {statuses} (the slowest in {slowest:.2f} s); the burst "
         f"took {r['burst_s']:.1f} s; it began once the workers were ready "
         f"({r.get('workers_ready_s', float('nan')):.1f} s after the server answered)",
-        f"- `/liveness`: {lv['n']} probes, slowest {lv['max_s']:.2f} s; over "
+        f"- `/liveness`: {lv['n']} probes, slowest {lv['max_s']:.2f} s, p95 "
+        f"{lv.get('p95_s', float('nan')):.2f} s; over "
         f"{LIVENESS_BOUND_S:g} s or failed: {lv['over_bound_or_failed'] or 'none'}",
         f"- health check (`python -m app.healthcheck`): {len(hc)} runs, exit codes "
         f"{[h['exit'] for h in hc]}, slowest {max((h['seconds'] for h in hc), default=0):.1f} s"
