@@ -208,6 +208,24 @@ def test_busy_core_runs_the_command_beside_a_spinning_process():
     assert left.returncode == 1, "a spinner outlived the command"
 
 
+def test_cpu_by_process_sums_a_commands_processes_by_kind(tmp_path):
+    """``cpu_by_process.py`` counts the CPU of the command's descendants (here a child
+    that spins ~1 s), by kind, and passes the command's exit code on."""
+    spin = ("import subprocess, sys; subprocess.run([sys.executable, '-c', 'import time\\n"
+            "t = time.process_time()\\nwhile time.process_time() - t < 1.0: pass']); "
+            "sys.exit(3)")
+    out = tmp_path / "cpu.json"
+    done = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "cpu_by_process.py"),
+                           "--interval", "0.1", "--out", str(out), "--", sys.executable,
+                           "-c", spin], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 3, done.stderr
+    report = json.loads(out.read_text())
+    assert [r["kind"] for r in report["rows"]] == ["python -c import"], report
+    assert 0.7 <= report["rows"][0]["cpu_s"] <= 1.5, report  # the child's spin, seen
+    assert report["rows"][0]["processes"] == 2, report  # the command and its child
+    assert "| process kind | CPU s | share | processes |" in done.stdout
+
+
 @pytest.mark.slow
 def test_friction_fit_benchmark_quick(tmp_path):
     _run("bench_friction_fit.py", tmp_path)
