@@ -8,12 +8,10 @@ seconds. So:
 
 * the request gets a **light page** (``loading_shell``: the title and a spinner, ~25 ms);
 * the **dashboard is built when a browser opens the page** (Panel's ``onload``, the page's
-  ``document_ready``; ``build_when_opened``), in two steps: its Python objects, then its
-  models, sent in one message (``pn.io.hold``). The steps of all pages take turns in the
-  server's one queue (``app.build_queue``: one step per turn of the event loop), so other
-  requests -- the liveness probe -- are answered between any two steps, however many
-  pages are opened at once; a page that is never opened (a script fetching URLs) costs
-  the light page only;
+  ``document_ready``; ``build_when_opened``), in two turns of the event loop: its Python
+  objects, then its models, sent in one message (``pn.io.hold``). Other requests are
+  answered between the turns, and a page that is never opened (a script fetching URLs)
+  costs the light page only;
 * a client whose unopened pages fill its place in the page gate (``app.pages.PageGate``)
   gets the **busy page**, answered before any Bokeh session is made (``BUSY_HTML``, ~1 ms:
   ``app.edge.answer_busy_before_building``), or as a Panel page (``busy_page``) when
@@ -27,7 +25,6 @@ import logging
 import panel as pn
 from bokeh.models import CustomJS
 
-from .build_queue import build_queue
 from .edge import guard_markup_views
 from .trace import mark
 from .views.widgets import caption, look
@@ -85,19 +82,18 @@ def loading_shell():
 def build_when_opened(shell, make, doc=None) -> None:
     """Replace ``shell``'s content by the page ``make()`` builds, once a browser has it.
 
-    Call while the page is built (``doc``: its document). Once the page is opened (Panel's
-    ``onload``) ``make()`` (the page's Python objects; the results it asks for start then)
-    waits for its turn in the build queue (``app.build_queue``); the page's models follow
-    as the queue's next step, under ``pn.io.hold``, so they leave in one message and other
-    requests are answered in between. Without a server (``doc`` None) the page is built at
-    once.
+    Call while the page is built (``doc``: its document). Panel's ``onload`` runs
+    ``make()`` (the page's Python objects; the results it asks for start then); the
+    page's models are made on the event loop's next turn (``pn.state.execute``), under
+    ``pn.io.hold``, so they leave in one message and other requests are answered in
+    between. Without a server (``doc`` None) the page is built at once.
     """
     if doc is None:
         shell.objects = [make()]
         return
     answer_each_event_in_one_message()
     guard_markup_views(doc)
-    pn.state.onload(lambda: build_queue().enqueue(lambda: _build(shell, make), doc))
+    pn.state.onload(lambda: _build(shell, make))
 
 
 _HOLDS: list = []
@@ -142,7 +138,7 @@ def _build(shell, make) -> None:
                                        css_classes=["page-failed"])]
         return
     mark("page objects built")
-    build_queue().enqueue(lambda: _attach(shell, page), first=True)
+    pn.state.execute(lambda: _attach(shell, page), schedule=True)
 
 
 def _attach(shell, page) -> None:

@@ -6,9 +6,8 @@ Stages: ``server receives`` (Panel starts on a browser event) and ``answer sent`
 answers it has left), ``job submitted`` (a result asked of the work pool), ``worker
 starts`` / ``worker ends`` (handed to a worker process / its result back), ``result
 applied`` / ``result sent`` (the views updated / their message left); and for a page being
-opened (``app.opening``): ``page build starts`` (the browser said it is ready and the
-page's turn in ``app.build_queue`` came), ``page objects built``, ``page models start`` (the
-queue's next step), ``page sent``.
+opened (``app.opening``): ``page build starts`` (the browser said it is ready), ``page
+objects built``, ``page models start`` (the next turn of the loop), ``page sent``.
 """
 from __future__ import annotations
 

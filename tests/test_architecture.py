@@ -156,7 +156,7 @@ def test_results_own_every_computation():
 #: The serving layer: how pages reach browsers (the light page, the page gate, the server's
 #: hooks and its guards on Panel's internals). The session layer -- state, results, their
 #: slots, the views -- imports none of it and knows nothing of sockets or messages.
-SERVING = ("edge", "opening", "build_queue", "pages", "app_hooks", "main", "healthcheck")
+SERVING = ("edge", "opening", "pages", "app_hooks", "main", "healthcheck")
 SESSION = ("app/state.py", "app/results.py", "app/slot.py", "app/compare.py", "app/views")
 #: Words of the wire: a session-layer module that uses one reaches below Panel's API.
 WIRE = ("PATCH-DOC", "send_message", "_socket", "session_context._session",
