@@ -14,7 +14,7 @@ What it misses: a process that starts and ends between two readings, and the las
 ``--interval`` of each process's life (so short-lived processes are undercounted; the
 table says how many processes of each kind were seen). For the test suite it shows
 what a faster suite has to cut: on the 2-core machine, 2026-11-27, Chromium took ~40 % of
-the CPU (~2.7 s per page opened).
+the CPU (~3 s per page opened).
 """
 from __future__ import annotations
 
@@ -37,7 +37,7 @@ def kind(cmdline: str) -> str:
     head = os.path.basename(words[0])
     if "chrom" in head:
         return "Chromium"
-    if "panel serve" in cmdline or (head == "panel" and "serve" in words[1:2]):
+    if "panel serve" in cmdline:
         return "panel serve"
     if "node" in head:
         return "node (Playwright's driver)"
@@ -114,7 +114,7 @@ def main() -> int:
     total = sum(totals.values())
     rows = [{"kind": k, "cpu_s": round(v, 1), "share": round(v / total, 3) if total else 0.0,
              "processes": counts[k]} for k, v in totals.most_common()]
-    print(f"| process kind | CPU s | share | processes |\n|---|---:|---:|---:|")
+    print("| process kind | CPU s | share | processes |\n|---|---:|---:|---:|")
     for r in rows:
         print(f"| {r['kind']} | {r['cpu_s']:.1f} | {r['share']:.0%} | {r['processes']} |")
     cores = os.cpu_count() or 1
