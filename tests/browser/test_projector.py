@@ -4,7 +4,9 @@ in normal mode, every figure's text is at least the projector minimum, legends, 
 colour bars and the top view's arrow labels lie inside their figure and do not overlap,
 no figure's title and no button's caption runs out of its box, and the headline is above
 the fold. Projected or not, named ticks ("W so far", "its split") do not run into each
-other and colour scales have a readable length.
+other and colour scales have a readable length. Every tab, normal and projected, on both
+screens, is saved as a screenshot to ``$MICROPILLAR_SCREENSHOTS`` (default: a temporary
+folder) for a person to look at, as the pages go from tab to tab.
 
 Sizes are read in the page: the Bokeh views' boxes (``Bokeh.index``), their frames (the
 drawn plot area) and their annotations' boxes.
@@ -18,7 +20,7 @@ import pytest
 from app.figures.common import MIN_TEXT_PX, PROJECTOR_SCALE
 
 from . import page_tools as pt
-from . import phone_tools
+from . import phone_tools, still
 
 pytestmark = [pytest.mark.browser, pytest.mark.timeout(600)]
 
@@ -144,6 +146,8 @@ def _show(page, url: str, tab: str, switch: bool = False) -> dict:
     main = TABS[tab][1]
     if main:
         pt.wait_for_plot(page, main, 60_000)
+    else:  # the equations, typeset by MathJax once shown
+        page.locator(".equations mjx-container").first.wait_for(state="visible")
     pt.settle(page, quiet_ms=1000, timeout_ms=30_000)
     page.wait_for_timeout(500)
     return page.evaluate(_FIGURES_JS)
@@ -153,10 +157,13 @@ class Shown:
     """The module's page of a screen size, on the address and tab a test asks for. A page
     opened on an address goes from tab to tab with its tab bar; the tests that only read it
     leave it as it was shown, so a test asking for the address and tab it shows reads it as
-    it is."""
+    it is. Each (mode, tab) shown is photographed once, as first shown, into ``photos``
+    (``folder``/``<tab>_<normal|projector>_<size>.png``)."""
 
-    def __init__(self, page):
+    def __init__(self, page, folder=None, size: str = "", photos: dict | None = None):
         self.page, self.url, self.tab, self.figures = page, None, None, None
+        self.folder, self.size = folder, size
+        self.photos = {} if photos is None else photos
 
     def show(self, url: str, tab: str) -> dict:
         """The page on ``url`` at ``tab``; its visible figures at rest."""
@@ -165,6 +172,10 @@ class Shown:
             self.url = None
             self.figures = _show(self.page, url, tab, switch)
             self.url, self.tab = url, tab
+            mode = "projector" if "projector=1" in url else "normal"
+            if self.folder is not None and (mode, tab) not in self.photos:
+                self.photos[mode, tab] = still.shoot(
+                    self.page, self.folder / f"{tab}_{mode}_{self.size}.png")
         return self.figures
 
     def changed(self) -> None:
@@ -172,17 +183,22 @@ class Shown:
         self.url = self.tab = None
 
 
+@pytest.fixture(scope="module")
+def folder():
+    return still.shots_dir()
+
+
 @pytest.fixture(scope="module", params=list(SCREENS))
-def screen(request, browser, app_url):
+def screen(request, browser, app_url, folder):
     """Per screen size: every tab's figures in normal mode, and a projector-mode page."""
-    size = SCREENS[request.param]
+    size, photos = SCREENS[request.param], {}
     normal = browser.new_context(viewport=size)
-    shown = Shown(normal.new_page())
-    measured = {tab: shown.show(app_url, tab) for tab, (_, main) in TABS.items() if main}
+    shown = Shown(normal.new_page(), folder, request.param, photos)
+    measured = {tab: shown.show(app_url, tab) for tab in TABS}
     normal.close()
     projected = browser.new_context(viewport=size)
     projected.set_default_timeout(60_000)
-    yield size, measured, Shown(projected.new_page())
+    yield size, measured, Shown(projected.new_page(), folder, request.param, photos)
     projected.close()
 
 
@@ -279,3 +295,16 @@ def test_design_field_captions_fit_their_fields(screen, app_url, mode):
     for b in boxes:
         assert _inside(b["caption"], b["field"], slack=2.0), \
             f"{size} ({mode}): the caption {b['text']!r} runs out of its field: {b}"
+
+
+def test_every_tab_is_photographed_normal_and_projected(screen, app_url, folder):
+    """The screenshots: every tab, normal and projected (those the tests above did not
+    show are shown now)."""
+    size, _normal, shown = screen
+    for tab in (t for t in TABS if ("projector", t) not in shown.photos):
+        shown.show(f"{app_url}?projector=1", tab)
+    photos = shown.photos
+    print(f"{len(photos)} screenshots in {folder}")
+    assert set(photos) == {(mode, tab) for mode in ("normal", "projector") for tab in TABS}
+    small = {k: p.stat().st_size for k, p in photos.items() if p.stat().st_size <= 10_000}
+    assert not small, f"screenshots of (almost) nothing: {small}"
