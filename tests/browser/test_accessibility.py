@@ -75,6 +75,8 @@ def test_axe_finds_no_wcag_violation_on_any_tab(browser, app_url, axe_js, config
             page.wait_for_timeout(300)  # the page's accessibility pass runs after a change
             violations = axe_tools.violations(page)
             if violations:  # a result landing during the scan redraws part of it: at rest, again
+                print(f"{config} [{title}]: scanned again at rest after:\n"
+                      + axe_tools.describe(violations))
                 pt.settle(page, quiet_ms=1_500)
                 violations = axe_tools.violations(page)
             if violations:
