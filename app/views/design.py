@@ -226,7 +226,7 @@ class DesignView(pn.viewable.Viewer):
             self.map_figure.x_range.update(start=xr[0], end=xr[1])
             self.map_figure.y_range.update(start=yr[0], end=yr[1])
             show_pinned(self.map_figure, self._pinned[self.map_figure], a is not None)
-        _locked(draw)
+        _locked(draw, self.map_figure)
         if error and (pt is None or error != pt.get("error")):
             self.point_text.object = f"**Not computed:** {error}"
             return
@@ -279,7 +279,7 @@ class DesignView(pn.viewable.Viewer):
                                            if k in self._polar_sources})
             set_extent(self.polar_figure, axis)
             show_pinned(self.polar_figure, self._pinned[self.polar_figure], a is not None)
-        _locked(draw)
+        _locked(draw, self.polar_figure)
         self.kappa.disabled = s.dist_family != "vonmises"
         self.angle.disabled = s.dist_family in ("uniform", "histogram")
         second = s.mix_weight > 0

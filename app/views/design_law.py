@@ -175,7 +175,7 @@ class FrictionLawView(pn.viewable.Viewer):
         def draw():
             F.update(self._sources, data)
             set_axes(self.figure, speeds, mus)
-        locked(draw)
+        locked(draw, self.figure)
 
     @param.depends("state.projector", watch=True)
     def _restyle(self) -> None:

@@ -142,7 +142,7 @@ class FrictionSpeedsView(pn.viewable.Viewer):
                 set_speed_axis(fig, *xr)
             self.figure.y_range.update(start=yr[0], end=yr[1])
             self.difference.y_range.update(start=dr[0], end=dr[1])
-        locked(draw)
+        locked(draw, self.figure)
         self.difference.visible = c is not None
 
     @param.depends("state.projector", watch=True)
