@@ -112,75 +112,81 @@ def _controls_width(page) -> float:
 
 # ---------------------------------------------------------------------------- projector
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="class")
 def projected_1920(browser, app_url):
     """One projector-mode page at 1920x1080 for the tabs' tests, which go from tab to tab
-    with its tab bar as a class does (``opened``: False until the page shows the app)."""
+    with its tab bar as a class does (``opened``: False until the page shows the app).
+    Closed once they ran: a page left open on a tab that computes (the Load tab's curves)
+    would keep the server's workers busy for the tests after them."""
     context, page = _new_page(browser, FULL_HD)
     shared = {"page": page, "opened": False}
     yield shared
     context.close()
 
 
-@pytest.mark.parametrize("tab", list(TABS))
-def test_projector_mode_at_1920_fills_the_screen_with_figures(projected_1920, app_url, tab):
-    """The figures cover most of the area beside the controls (they used to fill half the
-    screen at 1920x1080) and, with the controls folded away, most of the screen; they lie
-    inside it and grow with the window."""
-    label, names = TABS[tab]
-    # Projected, the support's Fig. 3 and energy split go below the fold (the top view and
-    # Fig. 7 take the screen).
-    names = PROJECTED_ABOVE_FOLD.get(tab, names)
-    page = projected_1920["page"]
-    screen = FULL_HD["width"] * FULL_HD["height"]
+class TestProjectorAt1920:
+    """The tabs projected at 1920x1080, one page going from tab to tab."""
 
-    def covered():
-        for name in names:
-            pt.wait_for_plot(page, name)
-        boxes = _figures(page, names)
-        assert set(boxes) == set(names), f"figures shown: {sorted(boxes)}"
-        for name, (left, top, width, height) in boxes.items():
-            assert left >= 0 and left + width <= FULL_HD["width"] + 1, (name, boxes[name])
-            assert top + height <= FULL_HD["height"] + 1, f"{name} runs off the screen"
-        return boxes, sum(_visible_area(b, FULL_HD) for b in boxes.values())
+    @pytest.mark.parametrize("tab", list(TABS))
+    def test_projector_mode_at_1920_fills_the_screen_with_figures(self, projected_1920, app_url,
+                                                                    tab):
+        """The figures cover most of the area beside the controls (they used to fill half the
+        screen at 1920x1080) and, with the controls folded away, most of the screen; they lie
+        inside it and grow with the window."""
+        label, names = TABS[tab]
+        # Projected, the support's Fig. 3 and energy split go below the fold (the top view and
+        # Fig. 7 take the screen).
+        names = PROJECTED_ABOVE_FOLD.get(tab, names)
+        page = projected_1920["page"]
+        screen = FULL_HD["width"] * FULL_HD["height"]
 
-    opened, projected_1920["opened"] = projected_1920["opened"], False  # until it passes
-    if opened:  # the last tab's test left it folded, at 1280x720
-        page.set_viewport_size(FULL_HD)
-        pt.open_tab(page, label)
-        pt.wait_for(page, lambda: f"tab={tab}" in page.url or tab == "support",
-                    what=f"the {tab} tab to open")
-        for name in names:
-            pt.wait_for_plot(page, name)
+        def covered():
+            for name in names:
+                pt.wait_for_plot(page, name)
+            boxes = _figures(page, names)
+            assert set(boxes) == set(names), f"figures shown: {sorted(boxes)}"
+            for name, (left, top, width, height) in boxes.items():
+                assert left >= 0 and left + width <= FULL_HD["width"] + 1, (name, boxes[name])
+                assert top + height <= FULL_HD["height"] + 1, f"{name} runs off the screen"
+            return boxes, sum(_visible_area(b, FULL_HD) for b in boxes.values())
+
+        opened, projected_1920["opened"] = projected_1920["opened"], False  # until it passes
+        if opened:  # the last tab's test left it folded, at 1280x720
+            page.set_viewport_size(FULL_HD)
+            pt.open_tab(page, label)
+            pt.wait_for(page, lambda: f"tab={tab}" in page.url or tab == "support",
+                        what=f"the {tab} tab to open")
+            for name in names:
+                pt.wait_for_plot(page, name)
+            _layout_at_rest(page, names)
+        else:
+            _open(page, f"{app_url}?tab={tab}&projector=1")
+        # Projected, the controls start folded away.
+        assert _controls_width(page) < 200, "the controls are open in projector mode"
+        boxes, folded = covered()
+        page.locator(".sidebar").get_by_text("Controls", exact=True).first.click()
+        pt.wait_for(page, lambda: _controls_width(page) > 200, what="the controls to open")
         _layout_at_rest(page, names)
-    else:
-        _open(page, f"{app_url}?tab={tab}&projector=1")
-    # Projected, the controls start folded away.
-    assert _controls_width(page) < 200, "the controls are open in projector mode"
-    boxes, folded = covered()
-    page.locator(".sidebar").get_by_text("Controls", exact=True).first.click()
-    pt.wait_for(page, lambda: _controls_width(page) > 200, what="the controls to open")
-    _layout_at_rest(page, names)
-    _, area = covered()
-    # The room left to figures: beside the controls and the "why" column (which stays
-    # beside the plots on a screen this wide).
-    side = page.evaluate(_BOXES_JS, ".side-column")
-    beside = (FULL_HD["width"] - _controls_width(page) - (side[0][2] if side else 0)) \
-        * FULL_HD["height"]
-    print(f"{tab}: figures cover {area / beside:.0%} of the area beside the controls; "
-          f"controls folded: {folded / screen:.0%} of the screen")
-    assert area / beside > 0.70, (tab, area / beside, boxes)
-    assert folded / (screen - (side[0][2] if side else 0) * FULL_HD["height"]) > 0.70, \
-        (tab, folded / screen)
-    page.locator(".sidebar").get_by_text("Controls", exact=True).first.click()
-    pt.wait_for(page, lambda: _controls_width(page) < 200, what="the controls to fold")
-    page.set_viewport_size({"width": 1280, "height": 720})
-    _layout_at_rest(page, names)
-    small = _figures(page, names)
-    for name in names:
-        assert boxes[name][2] * boxes[name][3] > 1.5 * small[name][2] * small[name][3], \
-            f"{name} does not grow with the window: {small[name]} -> {boxes[name]}"
-    projected_1920["opened"] = True
+        _, area = covered()
+        # The room left to figures: beside the controls and the "why" column (which stays
+        # beside the plots on a screen this wide).
+        side = page.evaluate(_BOXES_JS, ".side-column")
+        beside = (FULL_HD["width"] - _controls_width(page) - (side[0][2] if side else 0)) \
+            * FULL_HD["height"]
+        print(f"{tab}: figures cover {area / beside:.0%} of the area beside the controls; "
+              f"controls folded: {folded / screen:.0%} of the screen")
+        assert area / beside > 0.70, (tab, area / beside, boxes)
+        assert folded / (screen - (side[0][2] if side else 0) * FULL_HD["height"]) > 0.70, \
+            (tab, folded / screen)
+        page.locator(".sidebar").get_by_text("Controls", exact=True).first.click()
+        pt.wait_for(page, lambda: _controls_width(page) < 200, what="the controls to fold")
+        page.set_viewport_size({"width": 1280, "height": 720})
+        _layout_at_rest(page, names)
+        small = _figures(page, names)
+        for name in names:
+            assert boxes[name][2] * boxes[name][3] > 1.5 * small[name][2] * small[name][3], \
+                f"{name} does not grow with the window: {small[name]} -> {boxes[name]}"
+        projected_1920["opened"] = True
 
 
 def test_projector_mode_has_large_controls_and_labels(browser, app_url):
