@@ -4,9 +4,8 @@ Everything here works on the Bokeh document in the page: widgets are found by th
 titles (Bokeh ``Slider.title``, button labels), plotted data is read from the
 ``ColumnDataSource`` models of ``Bokeh.documents[0].all_models``.
 
-``measure_slider_latency`` is also used by the benchmarks: it times, inside the page,
-the interval from a slider key press to the first animation frame in which plotted data
-has changed.
+``measure_slider_latency`` (also used by the benchmarks) times, inside the page, a slider
+key press to the first animation frame in which plotted data has changed.
 """
 from __future__ import annotations
 
@@ -358,9 +357,12 @@ def click_plot(page, figure_name: str, x: float, y: float) -> None:
     page.mouse.click(sx, sy)
 
 
-def open_tab(page, title_pattern: str) -> None:
-    """Click the button of the dashboard's tab bar whose text matches ``title_pattern``."""
+def open_tab(page, title_pattern: str, tab: str | None = None) -> None:
+    """Click the button of the dashboard's tab bar whose text matches ``title_pattern``;
+    given ``tab`` (its key), wait until the address names it (``support`` is left out)."""
     page.locator(".tab-bar button").filter(has_text=re.compile(title_pattern)).first.click()
+    if tab is not None:
+        wait_for(page, lambda: f"tab={tab}" in page.url or tab == "support", what=f"the {tab} tab")
 
 
 def model_value(page, type_pattern: str, attribute: str = "value", css_class: str | None = None):

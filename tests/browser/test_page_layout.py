@@ -153,9 +153,7 @@ class TestProjectorAt1920:
         opened, projected_1920["opened"] = projected_1920["opened"], False  # until it passes
         if opened:  # the last tab's test left it folded, at 1280x720
             page.set_viewport_size(FULL_HD)
-            pt.open_tab(page, label)
-            pt.wait_for(page, lambda: f"tab={tab}" in page.url or tab == "support",
-                        what=f"the {tab} tab to open")
+            pt.open_tab(page, label, tab)
             for name in names:
                 pt.wait_for_plot(page, name)
             _layout_at_rest(page, names)

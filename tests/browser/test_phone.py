@@ -36,9 +36,7 @@ def _on_tab(phone: dict, app_url: str, tab: str):
     if shown is None:
         pt.wait_for_app(page, f"{app_url}?tab={tab}", timeout_ms=90_000)
     elif shown != tab:
-        pt.open_tab(page, "^" + re.escape(TAB_TITLES[TABS.index(tab)]))
-        pt.wait_for(page, lambda: f"tab={tab}" in page.url or tab == "support",
-                    what=f"the {tab} tab to open")
+        pt.open_tab(page, "^" + re.escape(TAB_TITLES[TABS.index(tab)]), tab)
     pt.settle(page)
     page.wait_for_timeout(500)
     return page

@@ -138,9 +138,7 @@ def _show(page, url: str, tab: str, switch: bool = False) -> dict:
     """Open ``url`` on ``tab`` (``switch``: the page shows ``url`` already; its tab bar
     opens ``tab``, as a class goes from tab to tab); the visible figures at rest."""
     if switch:
-        pt.open_tab(page, "^" + re.escape(TABS[tab][0]))
-        pt.wait_for(page, lambda: f"tab={tab}" in page.url or tab == "support",
-                    what=f"the {tab} tab to open")
+        pt.open_tab(page, "^" + re.escape(TABS[tab][0]), tab)
     else:
         pt.wait_for_app(page, f"{url}&tab={tab}" if "?" in url else f"{url}?tab={tab}", 90_000)
     main = TABS[tab][1]
@@ -300,7 +298,7 @@ def test_design_field_captions_fit_their_fields(screen, app_url, mode):
 def test_every_tab_is_photographed_normal_and_projected(screen, app_url, folder):
     """The screenshots: every tab, normal and projected (those the tests above did not
     show are shown now)."""
-    size, _normal, shown = screen
+    _size, _normal, shown = screen
     for tab in (t for t in TABS if ("projector", t) not in shown.photos):
         shown.show(f"{app_url}?projector=1", tab)
     photos = shown.photos
