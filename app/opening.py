@@ -8,10 +8,14 @@ seconds. So:
 
 * the request gets a **light page** (``loading_shell``: the title and a spinner, ~25 ms);
 * the **dashboard is built when a browser opens the page** (Panel's ``onload``, the page's
-  ``document_ready``; ``build_when_opened``), in two turns of the event loop: its Python
-  objects, then its models, sent in one message (``pn.io.hold``). Other requests are
+  ``document_ready``; ``build_when_opened``) over three turns of the event loop: its
+  Python objects, then their models in two messages (``pn.io.hold``), the support tab's
+  views in the second (``Dashboard.in_two_parts``). Other requests are
   answered between the turns, and a page that is never opened (a script fetching URLs)
   costs the light page only;
+* the dashboard is **built once when the server starts** (``rehearse``), in a document
+  no browser gets: a process's first page cost twice what the next ones did (one-time
+  work of Panel and Bokeh), and that first page was a visitor's or the health check's;
 * a client whose unopened pages fill its place in the page gate (``app.pages.PageGate``)
   gets the **busy page**, answered before any Bokeh session is made (``BUSY_HTML``, ~1 ms:
   ``app.edge.answer_busy_before_building``), or as a Panel page (``busy_page``) when
@@ -21,6 +25,7 @@ from __future__ import annotations
 
 import html
 import logging
+import time
 
 import panel as pn
 from bokeh.models import CustomJS
@@ -84,16 +89,16 @@ def build_when_opened(shell, make, doc=None) -> None:
 
     Call while the page is built (``doc``: its document). Panel's ``onload`` runs
     ``make()`` (the page's Python objects; the results it asks for start then); the
-    page's models are made on the event loop's next turn (``pn.state.execute``), under
-    ``pn.io.hold``, so they leave in one message and other requests are answered in
-    between. Without a server (``doc`` None) the page is built at once.
+    page's models are made ``STEP_GAP_MS`` later, under ``pn.io.hold``, in one message
+    or two (``Dashboard.in_two_parts``), so other requests are answered in between.
+    Without a server (``doc`` None) the page is built at once.
     """
     if doc is None:
         shell.objects = [make()]
         return
     answer_each_event_in_one_message()
     guard_markup_views(doc)
-    pn.state.onload(lambda: _build(shell, make))
+    pn.state.onload(lambda: _build(doc, shell, make))
 
 
 _HOLDS: list = []
@@ -128,7 +133,14 @@ def answer_each_event_in_one_message() -> None:
     pn.state.param.watch(on_busy, "busy")
 
 
-def _build(shell, make) -> None:
+#: Milliseconds between two steps of a page's build. On the next tick instead, a liveness
+#: probe that came during a step waited for the next one too (traced with one core busy:
+#: 0.88 s through the objects and the first part): Tornado takes a few turns of the loop
+#: to accept, read and answer a request, and a next-tick callback runs before them.
+STEP_GAP_MS = 10
+
+
+def _build(doc, shell, make) -> None:
     mark("page build starts")
     try:
         page = make()
@@ -138,15 +150,56 @@ def _build(shell, make) -> None:
                                        css_classes=["page-failed"])]
         return
     mark("page objects built")
-    pn.state.execute(lambda: _attach(shell, page), schedule=True)
+    doc.add_timeout_callback(lambda: _attach(doc, shell, page), STEP_GAP_MS)
 
 
-def _attach(shell, page) -> None:
-    """The page's models, sent as one message."""
+def _attach(doc, shell, page) -> None:
+    """The page's models, sent as one message; or as two, ``STEP_GAP_MS`` apart, when
+    the page can be split (``Dashboard.in_two_parts``)."""
     try:
         mark("page models start")
-        with pn.io.hold():
+        split = getattr(page, "in_two_parts", None)
+        rest = split() if split is not None else None
+        with pn.io.hold(doc):
             shell.objects = [page]
+        if rest is None:
+            mark("page sent")
+            return
+        mark("page first part sent")
+        doc.add_timeout_callback(lambda: _attach_rest(doc, rest), STEP_GAP_MS)
+    except Exception:
+        log.exception("the dashboard could not be shown")
+
+
+def _attach_rest(doc, rest) -> None:
+    try:
+        mark("page rest starts")
+        with pn.io.hold(doc):
+            rest()
         mark("page sent")
     except Exception:
         log.exception("the dashboard could not be shown")
+
+
+def rehearse() -> float:
+    """Build the dashboard once, with its models and its message, in a document no browser
+    gets; the seconds it took.
+
+    A process's first page build cost about twice what the next ones did, measured with
+    ``MICROPILLAR_TRACE`` on pages opened one after another (``page build starts`` ->
+    ``page sent``): its objects 0.71 s against 0.22-0.51 s, its models and message 1.03 s
+    against 0.52-0.59 s -- the first use of each of Panel's and Bokeh's model classes,
+    stylesheets and encoders, done once per process. That step holds the event loop, so
+    the first page opened (often the health check's) delayed the liveness probe by a
+    second. Run by the server hooks (``app.app_hooks``) before the first request, once the
+    solver is ready: the default state's results are computed then (and cached)."""
+    from bokeh.document import Document
+
+    from .views import Dashboard
+
+    start = time.perf_counter()
+    doc = Document()
+    page = pn.panel(Dashboard.from_session())
+    doc.add_root(page.get_root(doc))
+    doc.to_json()  # the models encoded, as for their message
+    return time.perf_counter() - start

@@ -87,11 +87,15 @@ class Prober(threading.Thread):
         super().__init__(daemon=True)
         self.url, self.interval, self.timeout = url, interval, timeout
         self.results: list[tuple[float, int | None]] = []
+        #: Wall-clock time (``time.time``) each probe was sent, to set beside the server's
+        #: trace (``MICROPILLAR_TRACE``).
+        self.sent: list[float] = []
         self._halt = threading.Event()
 
     def run(self):
         while not self._halt.is_set():
             start = time.perf_counter()
+            self.sent.append(time.time())
             try:
                 with urllib.request.urlopen(self.url, timeout=self.timeout) as r:
                     status = r.status
@@ -224,6 +228,7 @@ def run(requests: int = 20, out: Path | str = "bench-out", settle_s: float = 5.0
         "liveness": {"n": len(liveness), "max_s": max(liveness, default=float("nan")),
                      "p95_s": float(np.percentile(liveness, 95)) if liveness else float("nan"),
                      "seconds": [round(x, 4) for x in liveness],
+                     "sent_at": [round(t, 3) for t in probe.sent],
                      "over_bound_or_failed": bad_liveness},
         "healthchecks": [{"seconds": s, "exit": c, "stderr": e} for s, c, e in checks.results],
         "server_errors": server_errors,

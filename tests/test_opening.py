@@ -18,7 +18,7 @@ def test_a_page_that_cannot_be_built_says_so_in_place(caplog):
         raise RuntimeError("broken")
     shell = loading_shell()
     with caplog.at_level(logging.ERROR, logger="app.opening"):
-        _build(shell, make)
+        _build(None, shell, make)
     [alert] = shell.objects
     assert "page-failed" in alert.css_classes and "could not be built" in alert.object
     assert "broken" in caplog.text
@@ -102,3 +102,66 @@ def test_has_room_agrees_with_admit():
     gate.opened("a", 1)
     assert gate.has_room("a")  # and the open earned credit
     assert gate.allowance("a") == 3
+
+
+def _sources(doc) -> set[str]:
+    from bokeh.models import ColumnDataSource
+    return {m.name for m in doc.models if isinstance(m, ColumnDataSource)}
+
+
+def test_a_served_page_leaves_its_support_views_and_its_mark_for_a_second_message(pool):
+    """``app.opening`` sends a served page's models in two messages (two shorter holds of
+    the event loop): the support tab's views, and the root's class that marks the page
+    complete, come with the second."""
+    from bokeh.document import Document
+
+    from app.healthcheck import has_dashboard
+    from app.views import Dashboard
+
+    page = Dashboard()
+    rest = page.in_two_parts()
+    doc = Document()
+    doc.add_root(pn.panel(page).get_root(doc))
+    first = len(doc.models)
+    assert "orbit" not in _sources(doc) and not has_dashboard(doc)
+    # The controls come first.
+    assert any("ctl-theta0" in (getattr(m, "css_classes", None) or ()) for m in doc.models)
+    rest()
+    total = len(doc.models)
+    assert "orbit" in _sources(doc) and has_dashboard(doc)
+    # Neither message carries most of the page.
+    assert 0.15 * total < first < 0.6 * total, (first, total)
+
+
+def test_a_page_built_at_once_is_whole(pool):
+    """Without ``in_two_parts`` (notebooks, the offline pack, ``panel serve app/main.py``
+    without a browser) the page has its views and its mark from the start."""
+    from bokeh.document import Document
+
+    from app.healthcheck import has_dashboard
+    from app.views import Dashboard
+
+    doc = Document()
+    doc.add_root(pn.panel(Dashboard()).get_root(doc))
+    assert "orbit" in _sources(doc) and has_dashboard(doc)
+
+
+def test_the_rehearsal_builds_the_whole_page_and_computes_the_default_results(pool):
+    from app.opening import rehearse
+
+    assert rehearse() > 0
+    # The default state's results, computed then (and kept for the first visitor).
+    assert {"compute_support", "compute_uniform"} <= set(pool.calls), pool.calls
+
+
+def test_a_rehearsal_that_fails_leaves_the_server_serving(monkeypatch, caplog):
+    import app.app_hooks as hooks
+
+    def broken():
+        raise RuntimeError("no page")
+    monkeypatch.setattr(hooks, "install", lambda *args: None)
+    monkeypatch.setattr(hooks, "start_warm_up", lambda: False)
+    monkeypatch.setattr(hooks, "rehearse", broken)
+    with caplog.at_level(logging.ERROR, logger="app.app_hooks"):
+        hooks.on_server_loaded(None)
+    assert "could not be rehearsed" in caplog.text and "no page" in caplog.text

@@ -90,3 +90,50 @@ def test_a_slider_move_reaches_the_page_in_a_few_whole_messages(served):
     assert len(received) <= 6, received
     text = log.read_text(encoding="utf-8", errors="replace")
     assert "Traceback" not in text and "UnknownReferenceError" not in text
+
+
+#: Run in ``benchmarks/``: open a page and print, for each message the server sent once
+#: the page said it was ready until the dashboard was complete, the number of models it
+#: brought and whether it brought the orbit's source and the dashboard's mark, as JSON.
+_OPEN = """
+import asyncio, json, sys
+import load_client as lc
+
+async def main(base):
+    session = lc.Session(0, base)
+    received = []
+    read = session._read
+
+    async def recording():
+        message = await read()
+        if message is not None and message.msgtype == "PATCH-DOC" and session.doc is not None:
+            text = json.dumps(message.content)
+            received.append([text.count('"type": "object"'), '"name": "orbit"' in text,
+                             '["dashboard"]' in text])
+        return message
+    session._read = recording
+    await session.open()
+    session.socket.close()
+    print(json.dumps(received))
+
+asyncio.run(main(sys.argv[1]))
+"""
+
+
+def test_an_opened_page_arrives_in_two_parts_the_support_views_second(served):
+    """``app.opening``: the dashboard's models leave in two messages on two turns of the
+    server's loop, so neither holds it as long as the whole page did (a liveness probe or
+    another visitor's move waits at most one part); the page is marked complete (the
+    root's class, which the health check and the browser tests wait for) with the
+    second, which brings the support tab's figures."""
+    base, log = served
+    done = subprocess.run([sys.executable, "-c", _OPEN, base], cwd=ROOT / "benchmarks",
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-3000:]
+    received = json.loads(done.stdout.strip().splitlines()[-1])
+    parts = [r for r in received if r[0] >= 50]
+    assert len(parts) == 2, received
+    (first, orbit_first, mark_first), (second, orbit_second, mark_second) = parts
+    assert not orbit_first and not mark_first, received
+    assert orbit_second and mark_second, received
+    assert received[-1] == parts[1], received  # nothing was waited for after it

@@ -13,6 +13,7 @@ the browser history) and Back/Forward restore the state of the entry
 from __future__ import annotations
 
 import io
+from typing import Callable
 
 import panel as pn
 import param
@@ -145,10 +146,12 @@ class Dashboard(pn.viewable.Viewer):
         self.dismiss = pn.widgets.Button(**caption("Dismiss"), visible=False, width=80,
                                          css_classes=["notice-dismiss"], margin=(4, 4))
         self.dismiss.on_click(self._dismiss)
-        self.tabs = pn.Tabs(
-            (TAB_TITLES[0], pn.Row(self.support, self.readouts, css_classes=["support-tab"],
+        self._support_row = pn.Row(self.support, self.readouts, css_classes=["support-tab"],
                                    sizing_mode="stretch_both", margin=0,
-                                   stylesheets=[SIDE_ROW_CSS])),
+                                   stylesheets=[SIDE_ROW_CSS])
+        self._complete = True  # see ``in_two_parts``
+        self.tabs = pn.Tabs(
+            (TAB_TITLES[0], self._support_row),
             *((title, self._holders[tab]) for title, tab in zip(TAB_TITLES[1:], TABS[1:])),
             active=TABS.index(state.tab), dynamic=False, css_classes=["main-tabs"],
             sizing_mode="stretch_both", margin=0,
@@ -301,6 +304,26 @@ class Dashboard(pn.viewable.Viewer):
         self.downloads[0].filename = f"trajectory_{tag}_theta0_{s.theta0:g}.csv"
         self.downloads[1].download.filename = f"polar_{tag}.csv"
 
+    def in_two_parts(self) -> Callable[[], None]:
+        """Leave the One-support tab's views and the root's CSS class (``DASHBOARD_CLASS``)
+        out of the page until the function returned is called: a served page is sent in
+        two messages (``app.opening``), each holding the event loop half as long.
+
+        The support tab's views are ~410 of the page's ~530 models (its figures, their
+        sources and the player); the rest (header, controls, the other tabs' holders) the
+        other ~120. The root's class marks the page complete for whoever waits for it
+        (``app.healthcheck``, the browser tests)."""
+        objects = list(self._support_row.objects)
+        self._support_row.objects = []
+        self._complete = False
+
+        def rest() -> None:
+            self._complete = True
+            self._support_row.objects = objects
+            if hasattr(self, "_root"):
+                self._root.css_classes = [DASHBOARD_CLASS]
+        return rest
+
     def __panel__(self):
         header = pn.Row(
             pn.pane.Markdown("### Micropillar friction explorer", margin=(0, 10), width=270,
@@ -326,6 +349,7 @@ class Dashboard(pn.viewable.Viewer):
                                               css_classes=["page-body"],
                                               stylesheets=[BODY_CSS]),
                                self.behaviour, self.access, sizing_mode="stretch_both",
-                               styles=self._root_styles, css_classes=[DASHBOARD_CLASS],
+                               styles=self._root_styles,
+                               css_classes=[DASHBOARD_CLASS] if self._complete else [],
                                stylesheets=[ROOT_CSS])
         return self._root
