@@ -10,8 +10,8 @@ guards on Panel's internals, on the tested versions only) -> the views (``views`
 declare which results they draw (``param.depends``) with the figure functions of
 ``figures``. Also: ``reproduce`` (the paper's figures drawn), ``healthcheck`` (the
 container health check), ``export`` (CSV) and ``texts``; ``main.py`` builds the page and
-``app_hooks.py`` warms the kernel and the workers and installs the guards when the server
-starts; ``trace``: timestamps along an update for the benchmarks.
+``app_hooks.py`` warms the kernel and the workers, rehearses the page and installs the
+guards when the server starts; ``trace``: timestamps along an update for the benchmarks.
 
 ``app`` is an ordinary installed package (``pip install .`` or ``pip install -e .``
 installs it beside ``model``): ``panel serve app`` runs ``app/main.py``, which imports

@@ -118,7 +118,12 @@ def answer_each_event_in_one_message() -> None:
     def on_busy(event):
         if event.new:
             doc = pn.state.curdoc
-            if doc is not None and doc.session_context is not None:
+            # Not a page already held (a result being applied): that hold sends what is
+            # changed now. Panel's hold restores the hold it found when it ends, so one
+            # begun inside another and ended after it left the page held for good, and
+            # every later change of that page unsent.
+            if doc is not None and doc.session_context is not None \
+                    and not doc.callbacks.hold_value:
                 mark("server receives")
                 hold = pn.io.hold(doc)
                 hold.__enter__()

@@ -111,7 +111,9 @@ class Slot:
         if req is None:  # nothing to compute now (e.g. an unusable design): drop the older
             self._drop()
             return
-        doc = _session_doc()
+        # A slot serves one session: once bound, its document, not the context's, which a
+        # callback scheduled while another session was current can leave naming that one.
+        doc = self._doc or _session_doc()
         if doc is None:
             self._run_now(req)
         elif self.delay_ms:

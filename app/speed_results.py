@@ -127,7 +127,7 @@ class SpeedResults(param.Parameterized):
     def _collect(self, generation: int, jobs) -> None:
         """Apply each speed as it finishes: at once without a server session (tests,
         notebooks), else on the session's document, locked, as each future resolves."""
-        doc = pn.state.curdoc
+        doc = self._speed_doc or pn.state.curdoc  # once bound, this session's (app.slot)
         if doc is None or doc.session_context is None:
             for i, (V0, future) in enumerate(jobs):
                 self._arrive(generation, i, V0, future)

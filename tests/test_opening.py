@@ -165,3 +165,61 @@ def test_a_rehearsal_that_fails_leaves_the_server_serving(monkeypatch, caplog):
     with caplog.at_level(logging.ERROR, logger="app.app_hooks"):
         hooks.on_server_loaded(None)
     assert "could not be rehearsed" in caplog.text and "no page" in caplog.text
+
+
+def _served_doc():
+    """A document as a server's session has it (Bokeh keeps its session context behind a
+    weak reference: a callable)."""
+    from types import SimpleNamespace
+
+    from bokeh.document import Document
+
+    import threading
+
+    from panel.io.state import set_curdoc
+
+    doc, context = Document(), SimpleNamespace(id="a served session")
+    doc._session_context = lambda: context
+    with set_curdoc(doc):  # the event loop's thread, as Panel records it for a session
+        pn.state._thread_id = threading.get_ident()
+    return doc
+
+
+def _busy(flag: bool) -> None:
+    """As Panel marks it while it processes an event from a browser."""
+    from panel.util import edit_readonly
+    with edit_readonly(pn.state):
+        pn.state.busy = flag
+
+
+def test_an_answer_begun_while_a_result_is_applied_leaves_the_page_unheld():
+    """A browser event processed while the page is held by another change (a result
+    applied) must not leave the page held once both are done: Panel's hold restores the
+    hold it found, and a page held for good never sends another change."""
+    from panel.io.state import set_curdoc
+
+    from app.opening import answer_each_event_in_one_message
+
+    answer_each_event_in_one_message()
+    doc = _served_doc()
+    with set_curdoc(doc):
+        result = pn.io.hold(doc)
+        result.__enter__()
+        _busy(True)  # an event from the browser begins
+        result.__exit__(None, None, None)  # the result's message leaves
+        _busy(False)  # the event is answered
+    assert not doc.callbacks.hold_value
+
+
+def test_an_answer_is_held_until_the_event_is_processed():
+    from panel.io.state import set_curdoc
+
+    from app.opening import answer_each_event_in_one_message
+
+    answer_each_event_in_one_message()
+    doc = _served_doc()
+    with set_curdoc(doc):
+        _busy(True)
+        assert doc.callbacks.hold_value  # the answer's changes wait for one message
+        _busy(False)
+    assert not doc.callbacks.hold_value

@@ -237,3 +237,28 @@ def test_a_delayed_request_marks_its_result_busy_at_once(monkeypatch):
         assert applied == ["job"] and slot.owner.busy == set()
 
     asyncio.run(scenario())
+
+
+def test_a_slot_keeps_to_its_own_session_when_the_context_names_another(monkeypatch):
+    """A request made while the context names another session's document (a callback
+    scheduled while that session was current can leave it so) is scheduled on the slot's
+    own session, and that other session's end does not end this slot."""
+    current = {}
+    monkeypatch.setattr(slots, "_session_doc", lambda: current.get("doc"))
+    mine, other = SessionDoc("mine"), SessionDoc("other")
+    scheduled = {"mine": 0, "other": 0}
+    for doc in (mine, other):
+        doc.add_timeout_callback = (
+            lambda name: lambda callback, ms: scheduled.__setitem__(name, scheduled[name] + 1)
+        )(doc.name)
+    made = Slot(Owner(), "support", make=lambda: Request("any", None, abs), apply=[].append,
+                delay_ms=100)
+    current["doc"] = mine
+    made.request()
+    current["doc"] = other
+    made.request()
+    assert scheduled == {"mine": 2, "other": 0}
+    other.destroy()
+    assert not made.closed
+    mine.destroy()
+    assert made.closed
