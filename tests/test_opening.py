@@ -223,3 +223,12 @@ def test_an_answer_is_held_until_the_event_is_processed():
         assert doc.callbacks.hold_value  # the answer's changes wait for one message
         _busy(False)
     assert not doc.callbacks.hold_value
+
+
+def test_a_page_opened_on_another_tab_is_sent_whole(pool):
+    """Figures added to a hidden tab later are never laid out (BokehJS then fails on them
+    as the shown tab's player plays): a page opened on another tab goes in one message."""
+    from app.state import ExplorerState
+    from app.views import Dashboard
+
+    assert Dashboard(ExplorerState(tab="array")).in_two_parts() is None

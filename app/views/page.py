@@ -304,7 +304,7 @@ class Dashboard(pn.viewable.Viewer):
         self.downloads[0].filename = f"trajectory_{tag}_theta0_{s.theta0:g}.csv"
         self.downloads[1].download.filename = f"polar_{tag}.csv"
 
-    def in_two_parts(self) -> Callable[[], None]:
+    def in_two_parts(self) -> Callable[[], None] | None:
         """Leave the One-support tab's views and the root's CSS class (``DASHBOARD_CLASS``)
         out of the page until the function returned is called: a served page is sent in
         two messages (``app.opening``), each holding the event loop half as long.
@@ -312,7 +312,11 @@ class Dashboard(pn.viewable.Viewer):
         The support tab's views are ~410 of the page's ~530 models (its figures, their
         sources and the player); the rest (header, controls, the other tabs' holders) the
         other ~120. The root's class marks the page complete for whoever waits for it
-        (``app.healthcheck``, the browser tests)."""
+        (``app.healthcheck``, the browser tests). Only for a page opened on that tab (None
+        otherwise: one message): figures added to a hidden tab are never laid out, and
+        BokehJS then fails on them ("inner_width is unset") as other views play."""
+        if self.state.tab != "support":
+            return None
         objects = list(self._support_row.objects)
         self._support_row.objects = []
         self._complete = False
