@@ -10,7 +10,8 @@ seconds. So:
 * the **dashboard is built when a browser opens the page** (Panel's ``onload``, the page's
   ``document_ready``; ``build_when_opened``) over three turns of the event loop: its
   Python objects, then their models in two messages (``pn.io.hold``), the support tab's
-  views in the second (``Dashboard.in_two_parts``). Other requests are
+  views in the second (``Dashboard.in_two_parts``; a page opened on another tab in one).
+  Other requests are
   answered between the turns, and a page that is never opened (a script fetching URLs)
   costs the light page only;
 * the dashboard is **built once when the server starts** (``rehearse``), in a document
