@@ -315,7 +315,7 @@ class Dashboard(pn.viewable.Viewer):
         (``app.healthcheck``, the browser tests). Only for a page opened on that tab (None
         otherwise: one message): figures added to a hidden tab are never laid out, and
         BokehJS then fails on them ("inner_width is unset") as other views play."""
-        if self.state.tab != "support":
+        if self.state.tab != TABS[0]:  # the One-support tab
             return None
         objects = list(self._support_row.objects)
         self._support_row.objects = []
