@@ -99,6 +99,7 @@ class SupportView(pn.viewable.Viewer):
         self.player.on_frame(self._frames_js)
         self._frames_js.args["fp"].js_on_change("data", self._frames_js)
         self._layout = None  # the grid, made by __panel__
+        self._framed = False  # whether the scene's frame sources hold a contact's frame
         self._pinned = {self.scene: add_pinned(self.scene, "scene", "orbit"),
                         self.forces: add_pinned(self.forces, "forces", "forces")}
         for fig in self._pinned:
@@ -141,9 +142,15 @@ class SupportView(pn.viewable.Viewer):
             return
         s, p = data.series, data.params
         frames = support_frames_data(s, p, N_FRAMES)
+        drawn = {**F.scene_data(s, p), **F.force_data(s)}
+        if not self._framed:
+            # The document's first contact: its first frame goes with it. Later contacts'
+            # frames are drawn in the browser by the player's callback once the new
+            # frames arrive (at the frame on show), so the server does not send them.
+            drawn.update(F.scene_frame(s, p, 0))
+            self._framed = True
         with self._hold():
-            F.update(self._sources, {**F.scene_data(s, p), **F.scene_frame(s, p, 0),
-                                     **F.force_data(s)})
+            F.update(self._sources, drawn)
             self._fit_ranges(s, p)
             if getattr(s, "W", None) is not None:
                 energies = energy_frames(s, N_FRAMES)

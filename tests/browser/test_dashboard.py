@@ -228,6 +228,41 @@ def test_the_player_advances_in_the_browser(page, page_log, app_url):
     _no_errors(page_log)
 
 
+_SCENE_AT_FRAME = """() => {
+    const d = Bokeh.documents[0], get = (n) => d.get_model_by_name(n);
+    const src = (n) => [...d.all_models].find((m) => m.name === n && m.type === "ColumnDataSource");
+    const i = get("support_player_frame").value, f = src("support_frames").data;
+    const m = src("scene_mass").data, s = src("scene_slab").data;
+    const p = src("support_frame_params").data;
+    return {frame: i, mass: [m.x[0], m.y[0], m.tau[0]], at: [f.x[i], f.y[i], f.tau[i]],
+            right: s.right[0], slab: p.x_start[0] + f.tau[i]};
+}"""
+
+
+def test_a_new_contact_is_drawn_at_the_frame_on_show(page, page_log, app_url):
+    """The server sends a new contact's frames, not its scene at a frame: the page draws the
+    mass, springs, slab and arrows of the new contact at the paused frame itself."""
+    _open(page, app_url)
+    forward = page.get_by_role("button", name="Step ▶", exact=True).first
+    for _ in range(5):
+        forward.click()
+    pt.wait_for(page, lambda: _frame(page) == 5, timeout_s=5, what="five steps forward")
+    before = page.evaluate(_SCENE_AT_FRAME)
+    assert before["mass"] == before["at"]
+    orbit = pt.data_sources(page, ["orbit", "support_frames"])
+    handle = _handle(page, "theta0")
+    handle.press("ArrowRight")
+    assert pt.wait_for_data_change(page, orbit, ["orbit", "support_frames"], timeout_s=15), \
+        "a move of theta0 brought no new contact"
+    pt.settle(page, quiet_ms=300)
+    after = page.evaluate(_SCENE_AT_FRAME)
+    assert after["frame"] == 5
+    assert after["at"] != before["at"], "the frames did not change with theta0"
+    assert after["mass"] == after["at"], "the mass is not the new contact's at the frame on show"
+    assert after["right"] == pytest.approx(after["slab"]), "the slab is not at the frame's tau"
+    _no_errors(page_log)
+
+
 # ---------------------------------------------------------------------------- latency
 
 def test_slider_latency_in_the_browser(page, app_url):
