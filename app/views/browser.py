@@ -3,10 +3,10 @@ screen width.
 
 ``PageBehaviour`` is an invisible ``JSComponent`` placed once in the page:
 
-* **Address bar and history.** ``search`` is written by the server (debounced, the
-  state's ``?k_r=...``); the browser pushes it as a history entry only when it differs
-  from the address bar (on opening, the address is rewritten in place, as the page read
-  it). Back/Forward (``popstate``) send the entry's search string back
+* **Address bar and history.** ``search`` is written by the server (the state's
+  ``?k_r=...``, with the result a change brings); the browser pushes it as a history
+  entry once it has settled for ``SETTLE_MS`` and only when it differs from the address
+  bar (on opening, the address is rewritten in place, as the page read it). Back/Forward (``popstate``) send the entry's search string back
   as ``popped`` (``pops`` counts them, so the same entry twice is seen twice); the page
   then restores that state and writes it back as ``replace_search``, which replaces the
   entry (no new one, so Forward still works). ``acked`` tells which steps the server has
@@ -26,6 +26,9 @@ from panel.custom import JSComponent
 
 #: Widest screen (CSS px) that gets the phone layout; the stylesheet uses the same bound.
 NARROW_PX = 700
+#: The address bar's new state becomes a history entry once it has settled this long (ms):
+#: one entry per state the reader stopped at, not one per key press of a drag.
+SETTLE_MS = 400
 
 
 class PageBehaviour(JSComponent):
@@ -62,7 +65,9 @@ class PageBehaviour(JSComponent):
 
     export function render({ model, el }) {
       el.style.display = "none";
+      let settling = null;  // the address waiting to settle (push)
       const onPop = () => {
+        clearTimeout(settling);  // an address of the state left behind: not an entry
         model.popped = window.location.search;
         model.pops = model.pops + 1;
       };
@@ -90,8 +95,13 @@ class PageBehaviour(JSComponent):
         if (replace) window.history.replaceState({}, "", url);
         else window.history.pushState({}, "", url);
       };
-      const push = () => write(model.search, false);
-      const replace = () => write(model.replace_search, true);
+      // The server writes the address with each answer: the history gets an entry once
+      // the address has settled for SETTLE_MS (one per state the reader stopped at).
+      const push = () => {
+        clearTimeout(settling);
+        settling = setTimeout(() => { settling = null; write(model.search, false); }, SETTLE_MS);
+      };
+      const replace = () => { clearTimeout(settling); write(model.replace_search, true); };
       window.addEventListener("popstate", onPop);
       window.addEventListener("keydown", onKey, true);
       model.on("search", push);
@@ -103,4 +113,4 @@ class PageBehaviour(JSComponent):
       model.narrow = window.innerWidth < NARROW;
       write(model.search, true);  // the address as the page reads it, with no new entry
     }
-    """.replace("NARROW", str(NARROW_PX))
+    """.replace("NARROW", str(NARROW_PX)).replace("SETTLE_MS", str(SETTLE_MS))

@@ -83,6 +83,8 @@ class Dashboard(pn.viewable.Viewer):
         self.state = state = state or ExplorerState()
         self.results = results = SessionResults(state)
         self._url_generation = 0
+        self._url_pending = False  # the state changed since the address was last written
+        results.param.watch(self._url_with_result, "busy")
         views = dict(state=state, results=results)
         self.support = SupportView(**views)
         self.readouts = ReadoutsView(**views)
@@ -233,17 +235,32 @@ class Dashboard(pn.viewable.Viewer):
 
     # ------------------------------------------------------------------ URL, projector
     def _schedule_url(self, *_events) -> None:
+        """The address follows the state: written with the next result the change brings
+        (in its message: ``_url_with_result``), else ``URL_DELAY_MS`` later on its own.
+        The page makes a history entry once the address has settled (``PageBehaviour``)."""
         doc = pn.state.curdoc
         if doc is None or doc.session_context is None:
             self.behaviour.search = self.state.to_search()
             return
+        self._url_pending = True
         self._url_generation += 1
         generation = self._url_generation
 
         def write():
             if generation == self._url_generation:
-                self.behaviour.search = self.state.to_search()
+                self._write_url()
         doc.add_timeout_callback(write, URL_DELAY_MS)
+
+    def _write_url(self) -> None:
+        self._url_pending = False
+        self._url_generation += 1  # written: a write still scheduled has nothing to do
+        self.behaviour.search = self.state.to_search()
+
+    def _url_with_result(self, event) -> None:
+        """A computation ended (its result is being applied, in one message): an address
+        still to be written goes with it rather than in a message of its own."""
+        if self._url_pending and set(event.old) - set(event.new):
+            self._write_url()
 
     def _on_history(self, _event) -> None:
         """Back/Forward showed another address: show its state, and write that state
@@ -253,6 +270,7 @@ class Dashboard(pn.viewable.Viewer):
         self.behaviour.search = popped  # the address bar already shows it: nothing to push
         self.state.restore_query(popped)
         self._url_generation += 1  # the state's own (debounced) write is not needed
+        self._url_pending = False
         canonical = self.state.to_search()
         self.behaviour.replace_search = canonical
         self.behaviour.search = canonical

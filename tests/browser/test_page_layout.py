@@ -263,6 +263,22 @@ def test_back_and_forward_restore_the_state(page, app_url):
 URL_SETTLE_MS = 1000  # longer than the page's URL debounce
 
 
+def test_a_run_of_key_presses_makes_one_history_entry(page, app_url):
+    """The server writes the address with each answer; the page makes a history entry
+    only once it has settled, so Back after a run of presses goes to where it started."""
+    _open(page, f"{app_url}?theta0_deg=60")
+    start = page.evaluate("() => history.length")
+    handle = pt.slider_handle(page, "ctl-theta0")
+    for _ in range(8):  # each press answered (address included) before the next
+        handle.press("ArrowRight")
+        page.wait_for_timeout(200)
+    pt.wait_for(page, lambda: _query(page).get("theta0_deg") == "68", what="theta0_deg=68")
+    page.wait_for_timeout(URL_SETTLE_MS)
+    assert page.evaluate("() => history.length") == start + 1
+    page.go_back()
+    pt.wait_for(page, lambda: _slider(page, "ctl-theta0").value == 60, what="theta0 back to 60")
+
+
 @pytest.mark.parametrize("css, log", [("ctl-theta0", False), ("ctl-k_r", True)])
 def test_page_keys_move_a_slider_by_a_tenth_of_its_range(page, app_url, css, log):
     _open(page, app_url)
