@@ -139,8 +139,12 @@ class Controls(pn.viewable.Viewer):
             f"θ₀ = {a['theta0']:g}° (dashed, grey)")
 
     def _mark_preset(self, *_events) -> None:
-        """Draw the preset of the current springs solid, the others as outlines."""
+        """Draw the preset of the current springs solid, the others as outlines (the
+        buttons are restyled only when the preset matched changes, not at every move)."""
         active = self.state.matching_preset()
+        if active == getattr(self, "_marked", ()):
+            return
+        self._marked = active
         for name, button in self.presets.items():
             button.param.update(**look("primary", "solid" if name == active else "outline"))
 
