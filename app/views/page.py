@@ -6,9 +6,9 @@ notices and the headline (the result in one sentence) above the visible tab.
 The figures fill the window (``layout``): a 1280 x 720 laptop shows a whole tab without
 scrolling, a 1920 x 1080 projector the same tab larger; projector mode enlarges text,
 lines, slider handles and buttons. On a phone the controls fold above the plots, one
-plot per row. The URL follows the state (debounced, so dragging a slider does not flood
-the browser history) and Back/Forward restore the state of the entry
-(``browser.PageBehaviour``).
+plot per row. The URL follows the state (written with the result a change brings; the page
+makes a history entry once it has settled, so dragging a slider does not flood the
+history) and Back/Forward restore the state of the entry (``browser.PageBehaviour``).
 """
 from __future__ import annotations
 
