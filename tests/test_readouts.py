@@ -157,3 +157,28 @@ def test_the_folded_numbers_are_written_when_the_card_is_opened(pool):
     state.k_r = 0.7
     assert view.fixed_pane.object == fixed_markdown(results.support)
     assert results.support.params.k_r == 0.7
+
+
+def test_the_headline_never_quotes_a_result_of_the_controls_before(pool):
+    """After a change of the springs, the result that arrives first is not set beside the
+    other's number for the springs before: that part of the sentence is "being computed"
+    until its own result arrives."""
+    from app.results import SessionResults
+    from app.views.readouts import HeadlineView
+
+    state = ExplorerState()
+    results = SessionResults(state)
+    results.start()
+    view = HeadlineView(state=state, results=results)
+    before = results.uniform["FTx_over_mu0FN_duration"]
+    assert f"the slab feels {change_words(before)}" in view.text
+    uniform = results.slots["uniform"]
+    uniform.set_needed(False)  # its new result held back: the support's comes alone
+    state.F_N = 5.0
+    assert results.slots["support"].current and not uniform.current
+    assert change_words(results.support.fixed.FTx_over_mu0FN) in view.text
+    assert change_words(before) not in view.text
+    assert "all orientations: being computed." in view.text
+    uniform.set_needed(True)  # ... and once it arrives, both numbers are the new state's
+    after = results.uniform["FTx_over_mu0FN_duration"]
+    assert after != before and f"the slab feels {change_words(after)}" in view.text

@@ -288,9 +288,14 @@ class HeadlineView(pn.viewable.Viewer):
     @param.depends("results.support", "results.uniform", "results.errors",
                    "results.support_A", "results.uniform_A", "state.pinned", watch=True)
     def _write(self) -> None:
-        failed = bool(self.results.errors.get("uniform"))
-        fixed, theta0, uniform = self._numbers(self.results.support, self.results.uniform,
-                                               failed)
+        r = self.results
+        failed = bool(r.errors.get("uniform"))
+        # One sentence, one state: a result of the controls before the last change (the
+        # other one arrived first) is "being computed", not quoted beside the new one.
+        # A support that failed keeps its last good numbers (the notice says why).
+        support = r.support if r.slots["support"].current or r.errors.get("support") else None
+        row = r.uniform if r.slots["uniform"].current else None
+        fixed, theta0, uniform = self._numbers(support, row, failed)
         text = headline_text(fixed, theta0 if theta0 is not None else self.state.theta0,
                              uniform, "not computed (see the notice)" if failed else "")
         html = f"<span>{text}</span>"
