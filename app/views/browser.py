@@ -6,13 +6,14 @@ screen width.
 * **Address bar and history.** ``search`` is written by the server (the state's
   ``?k_r=...``, with the result a change brings); the browser pushes it as a history
   entry once it has settled for ``SETTLE_MS`` and only when it differs from the address
-  bar (on opening, the address is rewritten in place, as the page read it). Back/Forward (``popstate``) send the entry's search string back
-  as ``popped`` (``pops`` counts them, so the same entry twice is seen twice); the page
-  then restores that state and writes it back as ``replace_search``, which replaces the
-  entry (no new one, so Forward still works). ``acked`` tells which steps the server has
-  restored; an address the server wrote before the latest step arrives late and is
-  dropped, so quick Back/Back/Forward never rewrites the wrong entry. Panel's own ``pn.state.location`` pushes on every change and
-  never reports Back, which is why it is not used for this.
+  bar (on opening, the address is rewritten in place, as the page read it).
+  Back/Forward (``popstate``) send the entry's search string back as ``popped``
+  (``pops`` counts them, so the same entry twice is seen twice); the page then restores
+  that state and writes it back as ``replace_search``, which replaces the entry (no new
+  one, so Forward still works). ``acked`` tells which steps the server has restored; an
+  address the server wrote before the latest step arrives late and is dropped, so quick
+  Back/Back/Forward never rewrites the wrong entry. Panel's own ``pn.state.location``
+  pushes on every change and never reports Back, which is why it is not used for this.
 * **PageUp/PageDown on a slider** move it by a tenth of its range (rounded to its step),
   whatever its arrow-key step; noUiSlider's own page step is 5 arrow steps and cannot be
   changed after Bokeh creates it.

@@ -73,6 +73,7 @@ class Controls(pn.viewable.Viewer):
             for name, (k_r, k_t) in PRESETS.items()}
         for name, button in self.presets.items():
             button.on_click(lambda _event, name=name: state.apply_preset(name))
+        self._marked = ()  # the preset drawn solid (None: none); () before the first
         state.param.watch(self._mark_preset, ["k_r", "k_theta"])
         self.reset = pn.widgets.Button(**caption("Reset"), css_classes=["ctl-reset"],
                                        **look("warning", "outline"),
@@ -142,7 +143,7 @@ class Controls(pn.viewable.Viewer):
         """Draw the preset of the current springs solid, the others as outlines (the
         buttons are restyled only when the preset matched changes, not at every move)."""
         active = self.state.matching_preset()
-        if active == getattr(self, "_marked", ()):
+        if active == self._marked:
             return
         self._marked = active
         for name, button in self.presets.items():
