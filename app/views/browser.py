@@ -97,19 +97,26 @@ class PageBehaviour(JSComponent):
         else window.history.pushState({}, "", url);
       };
       // The server writes the address with each answer: the history gets an entry once
-      // the address has settled for SETTLE_MS (one per state the reader stopped at).
-      const push = () => {
+      // the address and the reader's input have settled for SETTLE_MS (one per state the
+      // reader stopped at; keys held or pressed in a run restart the wait).
+      const settle = () => {
         clearTimeout(settling);
         settling = setTimeout(() => { settling = null; write(model.search, false); }, SETTLE_MS);
       };
+      const push = settle;
+      const onInput = () => { if (settling !== null) settle(); };
       const replace = () => { clearTimeout(settling); write(model.replace_search, true); };
       window.addEventListener("popstate", onPop);
       window.addEventListener("keydown", onKey, true);
+      for (const kind of ["keydown", "pointerdown", "pointerup"])
+        window.addEventListener(kind, onInput, true);
       model.on("search", push);
       model.on("replace_search", replace);
       model.on("remove", () => {
         window.removeEventListener("popstate", onPop);
         window.removeEventListener("keydown", onKey, true);
+        for (const kind of ["keydown", "pointerdown", "pointerup"])
+          window.removeEventListener(kind, onInput, true);
       });
       model.narrow = window.innerWidth < NARROW;
       write(model.search, true);  // the address as the page reads it, with no new entry
