@@ -265,8 +265,7 @@ URL_SETTLE_MS = 1000  # longer than the page's URL debounce
 
 def test_a_run_of_key_presses_makes_one_history_entry(page, app_url):
     """The server writes the address with each answer; the page makes a history entry
-    only once the address and the keys have settled, so Back after a run of presses goes
-    to where it started (not through every step of the run)."""
+    once the address and the keys have settled: Back after a run goes to its start."""
     _open(page, f"{app_url}?theta0_deg=60")
     start = page.evaluate("() => history.length")
     handle = pt.slider_handle(page, "ctl-theta0")
@@ -276,9 +275,7 @@ def test_a_run_of_key_presses_makes_one_history_entry(page, app_url):
     pt.wait_for(page, lambda: _query(page).get("theta0_deg") == "68", what="theta0_deg=68")
     page.wait_for_timeout(URL_SETTLE_MS)
     entries = page.evaluate("() => history.length") - start
-    # One entry; two when a busy server answered a step of the run at once and then
-    # took longer than the page's 400 ms settling over the last one (an entry per press
-    # without the settling: 8).
+    # Two when a busy server answered a step at once, then took over 400 ms for the last.
     assert 1 <= entries <= 2, entries
     for _ in range(entries):
         page.go_back()
