@@ -41,6 +41,7 @@ from ..figures.access_js import PAGE_SCRIPT, mark_figures
 from ..figures.arrays import AVERAGE_COLUMNS
 from ..texts import AVERAGE_NAMES, FELT_AVERAGE, MECHANISMS
 from ..defaults import TABS
+from ..edge import TESTED
 from ..worker import UNIFORM_TOL
 from . import figures as views
 from .tabs import LATER_ID, later_json, later_tab, map_tab, polar_tab
@@ -54,7 +55,7 @@ MAX_BYTES = 5 * 1024 * 1024
 OFFLINE_TABS = ("support", "polar", "map")
 TITLE = "Micropillar friction explorer (offline)"
 #: The page's scripts (app/offline/*.js), in loading order.
-SCRIPTS = ("kernel_inputs", "kernel_rhs", "kernel_dopri5", "kernel", "solvers", "arrays",
+SCRIPTS = ("bokeh_fix", "kernel_inputs", "kernel_rhs", "kernel_dopri5", "kernel", "solvers", "arrays",
            "fragment", "jobs", "first", "views", "paint", "models", "readouts", "polarview",
            "mapview", "tabs", "open", "page")
 
@@ -274,6 +275,8 @@ def _base_page() -> str:
              + _script(LATER_ID, later_json(later, doc), "application/json")
              + "".join(_script(f"mp-{name}", (here / f"{name}.js").read_text(encoding="utf-8"))
                        for name in SCRIPTS)
+             + _script("mp-bokeh-fix-apply", "MicropillarBokehFix.apply(window.Bokeh, "
+                       f"{json.dumps(TESTED['bokeh'])});")  # before the first paint
              + PAGE_SCRIPT)  # slider handles and figures named for screen readers
     head_extra = ('<meta name="viewport" content="width=device-width, initial-scale=1">\n'
                   '<meta http-equiv="Content-Security-Policy" content="default-src \'none\'; '
