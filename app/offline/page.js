@@ -10,6 +10,7 @@
  *   explorer.preset("slider") -> a regime's springs;
  *   explorer.result  -> the last drawn result; explorer.drawn counts the redraws (texts
  *       included: they follow the support's figures after the paint, paint.js);
+ *   explorer.rehearsed -> the support's figures rehearsed once the page was idle (support.js);
  *   explorer.keyToSupportMs -> for the last key presses that changed the state: ms from
  *       the key press to the first animation frame after the support's figures changed;
  *   explorer.ready   -> a Promise resolved at the first drawn plot;
@@ -20,7 +21,8 @@
  *       explorer.uniformDrawn.
  * Reads its configuration (ranges, defaults, regimes: from the Python model at pack time)
  * from the JSON element #mp-config and the kernel from #mp-kernel. Its Bokeh models are
- * found by models.js, the polar and map tabs added by tabs.js; its texts are
+ * found by models.js (the support's figures drawn by support.js), the polar and map tabs
+ * added by tabs.js; its texts are
  * readouts.js's, Fig. 11 polarview.js's, Fig. 5 mapview.js's.
  */
 (function () {
@@ -39,7 +41,7 @@
   var state = FRAGMENT.defaults(CONFIG);
 
   // ------------------------------------------------------------ Bokeh models
-  var doc = null, models = null, polar = null, texts = null, laterTabs = null;  // once built
+  var doc = null, models = null, figures = null, polar = null, texts = null, laterTabs = null;
   function model(name) { return models.model(name); }
   function source(name) { return models.source(name); }
   function figure(name) { return models.figure(name); }
@@ -131,10 +133,9 @@
   var readyResolve;
   var explorer = {
     ready: new Promise(function (resolve) { readyResolve = resolve; }),
-    drawn: 0, result: null, polar: null, polarDrawn: 0, uniform: null, uniformDrawn: 0,
+    drawn: 0, rehearsed: 0, result: null, polar: null, polarDrawn: 0, uniform: null, uniformDrawn: 0,
     keyToSupportMs: keyClock.times
   };
-  function range(fig, which, lohi) { models.range(fig, which, lohi); }
   function drawSupport(r, ms) {
     if (r.error) {
       later.put("headline", function () {
@@ -145,22 +146,7 @@
       later.put("drawn", countDrawn);
       return;
     }
-    var s = r.series, p = r.params;
-    setData(VIEWS.sceneData(s, p.theta0, CONFIG));
-    var box = VIEWS.viewBox(s, CONFIG), scene = figure("scene");
-    range(scene, "x_range", [box[0], box[1]]);
-    range(scene, "y_range", [box[2], box[3]]);
-    setData(VIEWS.forceData(s));
-    range(figure("forces"), "x_range", VIEWS.forceXRange(s));
-    range(figure("forces"), "y_range", VIEWS.forceYRange(s, CONFIG.mu0));
-    var energies = VIEWS.energyFrames(s, CONFIG);
-    range(figure("energy_live"), "y_range", energies.range);
-    var frames = VIEWS.supportFrames(s, p, CONFIG);
-    source("support_player_times").data = {t: frames.support_frames.tau};
-    // New data redraw the current frame (the player's callbacks follow these sources).
-    source("energy_live_frames").data = energies.frames;
-    source("support_frames").data = frames.support_frames;
-    source("support_frame_params").data = frames.support_frame_params;
+    var frames = figures.draw(r);
     keyClock.drawn();
     explorer.result = r;
     // After the paint: the texts (each lays its root out again) and the polar marker.
@@ -211,11 +197,14 @@
     });
   }
 
-  function warmUp() {  // the kernel and the support's views compiled on the page (shortContact)
+  function warmUp() {  // the kernel compiled on the page (shortContact), the figures rehearsed
     var input = contactInput(state), r = shortContact(input) && contactChannel.warmHere(input, 4);
-    if (!r || r.error) return;
-    VIEWS.sceneData(r.series, r.params.theta0, CONFIG); VIEWS.forceData(r.series);
-    VIEWS.energyFrames(r.series, CONFIG); VIEWS.supportFrames(r.series, r.params, CONFIG);
+    var now = explorer.result, next = Object.assign({}, state, {theta0_deg: (state.theta0_deg + 1) % 360});
+    var other = r && !r.error && contactChannel.warmHere(contactInput(next), 1);
+    if (!other || other.error) return;
+    figures.rehearse(other, now, function () {
+      return explorer.result === now && !contactChannel.inFlight && !contactChannel.pending;
+    }, function (n) { explorer.rehearsed = n; });
   }
   function reducedMotion() {
     return !!(window.matchMedia && window.matchMedia("(prefers-reduced-motion: reduce)").matches);
@@ -373,6 +362,7 @@
   function start(built) {
     doc = built;
     models = window.MicropillarModels(doc);
+    figures = window.MicropillarSupportFigures(CONFIG, models);
     laterTabs = window.MicropillarLaterTabs(doc, model("tabs"), CONFIG.offline_tabs);
     texts = window.MicropillarReadouts(CONFIG, {model: model, state: function () { return state; }});
     polar = window.MicropillarPolarView(CONFIG, {setData: setData, setText: setText, esc: esc});
