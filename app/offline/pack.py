@@ -55,9 +55,9 @@ MAX_BYTES = 5 * 1024 * 1024
 OFFLINE_TABS = ("support", "polar", "map")
 TITLE = "Micropillar friction explorer (offline)"
 #: The page's scripts (app/offline/*.js), in loading order.
-SCRIPTS = ("bokeh_fix", "kernel_inputs", "kernel_rhs", "kernel_dopri5", "kernel", "solvers", "arrays",
-           "fragment", "jobs", "first", "views", "support", "paint", "models", "readouts", "polarview",
-           "mapview", "tabs", "open", "page")
+SCRIPTS = ("bokeh_fix", "kernel_inputs", "kernel_rhs", "kernel_dopri5", "kernel", "solvers",
+           "arrays", "fragment", "jobs", "first", "views", "support", "paint", "models",
+           "readouts", "polarview", "mapview", "tabs", "open", "page")
 
 _SLIDERS = (  # (control, fragment key, title, log scale or the linear step)
     ("k_r", "k_r", "k_r: radial stiffness (Eq. 5)", True),

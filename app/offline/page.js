@@ -22,13 +22,13 @@
  * Reads its configuration (ranges, defaults, regimes: from the Python model at pack time)
  * from the JSON element #mp-config and the kernel from #mp-kernel. Its Bokeh models are
  * found by models.js (the support's figures drawn by support.js), the polar and map tabs
- * added by tabs.js; its texts are
- * readouts.js's, Fig. 11 polarview.js's, Fig. 5 mapview.js's.
+ * added by tabs.js; its texts are readouts.js's, Fig. 11 polarview.js's, Fig. 5
+ * mapview.js's.
  */
 (function () {
   "use strict";
   var CONFIG = JSON.parse(document.getElementById("mp-config").textContent);
-  var KERNEL = window.MicropillarKernel, VIEWS = window.MicropillarViews;
+  var KERNEL = window.MicropillarKernel;
   var CONTROLS = CONFIG.controls;
   var MAX_STEPS = 1000000, HERE_STEPS = 2000;  // a contact this short: shortContact
 
@@ -133,8 +133,8 @@
   var readyResolve;
   var explorer = {
     ready: new Promise(function (resolve) { readyResolve = resolve; }),
-    drawn: 0, rehearsed: 0, result: null, polar: null, polarDrawn: 0, uniform: null, uniformDrawn: 0,
-    keyToSupportMs: keyClock.times
+    drawn: 0, rehearsed: 0, result: null, polar: null, polarDrawn: 0, uniform: null,
+    uniformDrawn: 0, keyToSupportMs: keyClock.times
   };
   function drawSupport(r, ms) {
     if (r.error) {
@@ -199,7 +199,8 @@
 
   function warmUp() {  // the kernel compiled on the page (shortContact), the figures rehearsed
     var input = contactInput(state), r = shortContact(input) && contactChannel.warmHere(input, 4);
-    var now = explorer.result, next = Object.assign({}, state, {theta0_deg: (state.theta0_deg + 1) % 360});
+    var now = explorer.result;  // the contact one degree on, drawn and undrawn (support.js)
+    var next = Object.assign({}, state, {theta0_deg: (state.theta0_deg + 1) % 360});
     var other = r && !r.error && contactChannel.warmHere(contactInput(next), 1);
     if (!other || other.error) return;
     figures.rehearse(other, now, function () {
