@@ -241,3 +241,18 @@ def test_friction_fit_benchmark_quick(tmp_path):
     t = data["speeds"]["seconds"]
     assert _spread_ok(t["min"], t["median"], t["max"]) and t["n"] == 2
     assert "median [min–max] over 2 runs" in report
+
+
+def test_message_benchmark_encodes_real_moves_both_ways(tmp_path):
+    """``bench_messages.py``: a move's message encoded by Bokeh's serializer and by one that
+    makes references as met gives the same message (the script checks it and fails
+    otherwise), on the dashboard's page as served; each figure with its spread."""
+    out = _run("bench_messages.py", tmp_path)
+    found = json.loads((tmp_path / "bench_messages.json").read_text())
+    assert found["models"] >= 400 and 1 <= found["messages"] <= 6, found
+    for key in ("bokeh_ms", "as_met_ms", "events", "buffers", "json_bytes"):
+        assert _spread_ok(found[key]["min"], found[key]["median"], found[key]["max"]), key
+    rows = found["rows"]
+    assert all(r["buffers"] >= 1 and r["events"] >= 1 for r in rows), rows
+    assert {r["slider"] for r in rows} <= {"F_N", "k_r", "k_theta", "theta0"}
+    assert "Bokeh's table of references" in out and f"{found['models']} models" in out

@@ -3,9 +3,9 @@ whatever the message holds, so a one-event message costs time in proportion to t
 
 Bokeh 3.9.2. ``patch_doc.create`` builds ``Serializer(references=doc.models.synced_references)``
 and ``Serializer.__init__`` makes ``{id(obj): obj.ref for obj in references}``: a ``Ref``
-for each of the document's models, of which the message uses a handful. Expected: a
-reference made when the encoder meets a model (``get_ref``), the set of synced models only
-looked up.
+for each of the document's models, of which a message of property changes uses none
+(its events name their models by reference directly). Expected: a reference made when
+the encoder meets a model (``get_ref``), the set of synced models only looked up.
 
 Run: ``python docs/upstream/patch_doc_reference_table.py``: documents of 1, 10 and 40
 figures; one event (a range's ``start``) encoded into a PATCH-DOC with Bokeh's serializer
