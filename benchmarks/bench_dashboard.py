@@ -248,7 +248,19 @@ def served_text(served: dict | None) -> str:
             f"{np.median(ms):.1f} [{ms.min():.1f}–{ms.max():.1f}] ms; per move "
             f"{np.median(served['messages per move']):.1f} messages, "
             f"{np.median(served['arrays per move']):.1f} binary arrays (load average "
-            f"{served['load average'][0]:.1f} before, {served['load average'][1]:.1f} after).\n")
+            f"{served['load average'][0]:.1f} before, {served['load average'][1]:.1f} after).\n"
+            + profile_text(served.get("profile")))
+
+
+def profile_text(profiled: dict | None) -> str:
+    """Where the served server's time went during the moves (``--served-profile``)."""
+    if not profiled:
+        return ""
+    if "error" in profiled:
+        return f"\nNo profile of the served moves: {profiled['error']}\n"
+    from load_profile import markdown
+    return ("\nWhere the served server's time went during the moves (py-spy samples of its "
+            "threads, by the innermost frame's layer):\n\n" + markdown(profiled))
 
 
 def table(server: dict, browser: dict, cost: dict | None = None) -> str:
@@ -278,7 +290,12 @@ def main():
     ap.add_argument("--no-browser", action="store_true", help="server-side part only")
     ap.add_argument("--served", type=int, default=0, metavar="K",
                     help="also serve the app and measure its CPU per move with K sessions")
+    ap.add_argument("--served-profile", action="store_true",
+                    help="with --served: where the served server's time goes during the "
+                         "moves (py-spy; pip install -e \".[bench]\")")
     args = ap.parse_args()
+    if args.served_profile and not args.served:
+        ap.error("--served-profile needs --served K (the sessions whose moves are profiled)")
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
@@ -292,7 +309,7 @@ def main():
         from served_moves import served_cost
         start = time.perf_counter()
         served = served_cost(out, sessions=args.served, moves=3 if args.quick else 10,
-                             blocks=2 if args.quick else 5)
+                             blocks=2 if args.quick else 5, profile=args.served_profile)
         phases["served moves"] = time.perf_counter() - start
     start = time.perf_counter()
     browser = {} if args.no_browser else browser_side(6 if args.quick else 30, out)

@@ -44,7 +44,8 @@ def _cpu_s(pid: int) -> float:
     return t.user + t.system
 
 
-async def _drive(base: str, pid: int, sessions: int, moves: int, blocks: int) -> dict:
+async def _drive(base: str, pid: int, sessions: int, moves: int, blocks: int,
+                 profile_path: Path | None = None) -> dict:
     opened = [CountingSession(i, base, "app", seed=11) for i in range(sessions)]
     for s in opened:
         await s.open()
@@ -57,6 +58,10 @@ async def _drive(base: str, pid: int, sessions: int, moves: int, blocks: int) ->
             await s.move(drags=False)
             await asyncio.sleep(REST_S)
     per_move, patches, buffers = [], [], []
+    profiler = None
+    if profile_path is not None:  # the blocks' moves only, not the opening
+        from load_profile import ServerProfiler
+        profiler = ServerProfiler(pid, profile_path, subprocesses=False)
     for _ in range(blocks):
         cpu, n_patches = _cpu_s(pid), sum(s.patches for s in opened)
         n_buffers = sum(s.buffers for s in opened)
@@ -65,20 +70,30 @@ async def _drive(base: str, pid: int, sessions: int, moves: int, blocks: int) ->
         per_move.append((_cpu_s(pid) - cpu) / n * 1e3)
         patches.append((sum(s.patches for s in opened) - n_patches) / n)
         buffers.append((sum(s.buffers for s in opened) - n_buffers) / n)
+    profiled = None
+    if profiler is not None:
+        from load_profile import summarise
+        problem = profiler.stop()
+        profiled = {"error": problem} if problem else summarise(profile_path)
     for s in opened:
         await s.close()
-    return {"ms": per_move, "messages per move": patches, "arrays per move": buffers}
+    return {"ms": per_move, "messages per move": patches, "arrays per move": buffers,
+            "profile": profiled}
 
 
-def served_cost(out: Path, sessions: int = 3, moves: int = 10, blocks: int = 5) -> dict:
+def served_cost(out: Path, sessions: int = 3, moves: int = 10, blocks: int = 5,
+                profile: bool = False) -> dict:
     """Server-process CPU ms per move over ``blocks`` blocks of ``sessions`` x ``moves``
-    moves; the load average before and after."""
+    moves; the load average before and after. ``profile``: the server process recorded
+    by py-spy during the blocks (``out/served-profile.txt``; ``pip install -e ".[bench]"``),
+    summarised by layer and function under ``"profile"`` (``load_profile.summarise``)."""
     serve_app = helper("browser/serving").serve_app
     load = [os.getloadavg()[0]]
     start = time.perf_counter()
     with serve_app(out / "bench-served-moves.log") as base:
         pid = server_pid(int(base.rsplit(":", 1)[1]))
-        found = asyncio.run(_drive(base, pid, sessions, moves, blocks))
+        found = asyncio.run(_drive(base, pid, sessions, moves, blocks,
+                                   out / "served-profile.txt" if profile else None))
     load.append(os.getloadavg()[0])
     return {**found, "sessions": sessions, "moves per block": moves,
             "load average": load, "wall_s": time.perf_counter() - start}

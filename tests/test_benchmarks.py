@@ -256,3 +256,36 @@ def test_message_benchmark_encodes_real_moves_both_ways(tmp_path):
     assert all(r["buffers"] >= 1 and r["events"] >= 1 for r in rows), rows
     assert {r["slider"] for r in rows} <= {"F_N", "k_r", "k_theta", "theta0"}
     assert "Bokeh's table of references" in out and f"{found['models']} models" in out
+
+
+@pytest.mark.slow
+def test_served_moves_are_measured_and_profiled(tmp_path):
+    """``bench_dashboard.py --served K --served-profile``: the served server's CPU per move
+    over blocks, the messages and arrays per move, and where its time went (py-spy), or why
+    there is no profile."""
+    done = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "bench_dashboard.py"),
+                           "--quick", "--no-browser", "--served", "1", "--served-profile",
+                           "--out", str(tmp_path)], cwd=ROOT, capture_output=True, text=True,
+                          timeout=900)
+    assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
+    served = json.loads((tmp_path / "dashboard.json").read_text())["served"]
+    assert len(served["ms"]) == 2 and all(ms > 0 for ms in served["ms"]), served
+    assert all(n >= 1 for n in served["messages per move"]), served
+    assert all(n >= 1 for n in served["arrays per move"]), served
+    report = (tmp_path / "dashboard.md").read_text()
+    assert "Served, 1 sessions, 2 blocks of 3 moves" in report
+    profiled = served["profile"]
+    if "error" in profiled:  # py-spy is the bench extra's, not the tests'
+        assert shutil.which("py-spy") is None and "pip install" in profiled["error"], profiled
+        assert "No profile of the served moves" in report
+    else:
+        assert profiled["by_process"]["server"] > 0 and "server" in profiled["layers"]
+        assert "Where the served server's time went" in report
+    assert (tmp_path / "served-profile.txt").exists() == ("error" not in profiled)
+
+
+def test_served_profile_needs_served_sessions(tmp_path):
+    done = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "bench_dashboard.py"),
+                           "--served-profile", "--out", str(tmp_path)], cwd=ROOT,
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2 and "--served-profile needs --served K" in done.stderr
