@@ -31,8 +31,11 @@ LAYERS = (
     ("app (dashboard code)", re.compile(r"\(app/")),
     ("Tornado, websocket, HTTP", re.compile(r"\((tornado/|asyncio/)")),
 )
-#: The innermost frame of a sample in which the event loop waits for something to do.
-IDLE = re.compile(r"^(select|poll|epoll|_run_once) \((selectors|asyncio/base_events)")
+#: The innermost frame of a sample in which a thread waits for something to do: the event
+#: loop's selector (py-spy names it with its class: ``EpollSelector.select``), the process
+#: pool's manager thread polling its pipes, a thread waiting on a condition.
+IDLE = re.compile(r"^(\w+\.)?(select|poll|epoll|_run_once|wait) "
+                  r"\((selectors|asyncio/base_events|threading)")
 
 
 class ServerProfiler:

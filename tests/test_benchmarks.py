@@ -289,3 +289,25 @@ def test_served_profile_needs_served_sessions(tmp_path):
                            "--served-profile", "--out", str(tmp_path)], cwd=ROOT,
                           capture_output=True, text=True, timeout=120)
     assert done.returncode == 2 and "--served-profile needs --served K" in done.stderr
+
+
+def test_profile_summary_counts_waiting_threads_as_idle(tmp_path):
+    """``load_profile.summarise``: a thread blocked in its selector or on a condition is
+    waiting, not busy; the busy samples go to the layer of their innermost frame."""
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("load_profile",
+                                                  ROOT / "benchmarks" / "load_profile.py")
+    load_profile = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(load_profile)
+    loop = "<module> (panel:8);BaseEventLoop.run_forever (asyncio/base_events.py:607)"
+    raw = tmp_path / "raw.txt"
+    raw.write_text("\n".join([
+        f"{loop};EpollSelector.select (selectors.py:468) 50",
+        "Thread._bootstrap (threading.py:1002);_PollLikeSelector.select (selectors.py:415) 30",
+        "Thread._bootstrap (threading.py:1002);Condition.wait (threading.py:327) 10",
+        f"{loop};patch_doc.create (bokeh/protocol/messages/patch_doc.py:89);"
+        "Serializer.__init__ (bokeh/core/serialization.py:226) 7",
+        f"{loop};Parameter.__set__ (param/parameterized.py:2058) 3"]) + "\n")
+    layers = load_profile.summarise(raw)["layers"]["server"]
+    assert layers == {"idle (waiting)": 90, "Bokeh serialisation (JSON, buffers)": 7,
+                      "param": 3}, layers
