@@ -7,7 +7,7 @@ The dashboard is built in a Bokeh document as the server builds it (``Dashboard`
 One support tab), the page's models marked as sent (``flush_synced``), and random moves of
 the four sliders (seeded) are made; each move's changes (its result applied, computed
 without a server) are encoded into a ``PATCH-DOC`` as the server does, ``--repeats`` times (their median kept),
-with Bokeh's serializer and, alternated in the same run, with one that makes a model's
+with Bokeh's serializer and, alternated in the same run, with the reproducer's, which makes a model's
 reference when the encoder meets it (the two messages are checked equal, and first both
 serializers on the cases the table is for: a model the page has sent as its reference, a
 new one whole). The CPU time of this thread per message, median [min-max] over the moves. Everything else a move costs the
@@ -33,26 +33,17 @@ SLIDERS = {"theta0": lambda r: r.uniform(0.0, 359.0),
            "F_N": lambda r: 10 ** r.uniform(-1.0, 1.0)}
 
 
+#: The upstream reproducer, whose serializer (references made as met) is measured here.
+REPRODUCER = Path(__file__).resolve().parents[1] / "docs" / "upstream" / \
+    "patch_doc_reference_table.py"
+
+
 def _as_met_serializer():
-    from bokeh.core.serialization import Serializer
+    """The reproducer's ``AsMet``: Bokeh's encoder, each synced model's reference made when
+    it is met (run from this checkout's file, its ``__main__`` part not)."""
+    import runpy
 
-    class AsMet(Serializer):
-        """Bokeh's encoder, each synced model's reference made when it is met."""
-
-        def __init__(self, *, references=frozenset(), **kwargs):
-            super().__init__(**kwargs)
-            self._synced = {id(model): model for model in references}
-
-        def has_ref(self, obj) -> bool:
-            return super().has_ref(obj) or id(obj) in self._synced
-
-        def get_ref(self, obj):
-            ref = super().get_ref(obj)
-            if ref is None and id(obj) in self._synced:
-                ref = obj.ref
-                super().add_ref(obj, ref)
-            return ref
-    return AsMet
+    return runpy.run_path(str(REPRODUCER))["AsMet"]
 
 
 class _Recorder:
