@@ -6,13 +6,13 @@ table of references to every model of the page (``docs/upstream/patch_doc_refere
 The dashboard is built in a Bokeh document as the server builds it (``Dashboard`` on the
 One support tab), the page's models marked as sent (``flush_synced``), and random moves of
 the four sliders (seeded) are made; each move's changes (its result applied, computed
-without a server) are encoded into a ``PATCH-DOC`` as the server does, ``--repeats`` times (their median kept),
-with Bokeh's serializer and, alternated in the same run, with the reproducer's, which makes a model's
-reference when the encoder meets it (the two messages are checked equal, and first both
-serializers on the cases the table is for: a model the page has sent as its reference, a
-new one whole). The CPU time of this thread per message, median [min-max] over the moves. Everything else a move costs the
-server (the incoming message, Panel and param, the views, the websocket) is
-``served_moves.py``'s.
+without a server) are encoded into a ``PATCH-DOC`` as the server does, ``--repeats`` times
+(their median kept), with Bokeh's serializer and, alternated in the same run, with the
+reproducer's, which makes a model's reference when the encoder meets it. The two messages
+are checked equal, and first both serializers on the cases the table is for (a model the
+page has: sent as its reference; a new one: sent whole). The CPU time of this thread per
+message, median [min-max] over the moves. Everything else a move costs the server (the
+incoming message, Panel and param, the views, the websocket) is ``served_moves.py``'s.
 """
 from __future__ import annotations
 
