@@ -8,7 +8,9 @@ Runs the command after ``--`` and reads ``/proc`` every ``--interval`` seconds (
 (Chromium, the dashboard's ``panel serve``, its work-pool processes, pytest-xdist
 workers, Playwright's driver, other Python commands by their first arguments). Prints a
 table with the wall time and the share of the machine's cores the command used, and
-exits with the command's exit code.
+exits with the command's exit code. Also the whole machine's busy CPU over the run
+(``/proc/stat`` read before and after: everything but idle and I/O wait), which counts
+every process, short-lived or not, and other work on the machine too.
 
 What it misses: a process that starts and ends between two readings, and the last
 ``--interval`` of each process's life (so short-lived processes are undercounted; the
@@ -88,6 +90,13 @@ def sample(root: int, seen: dict, kinds: dict) -> None:
                 kinds[key] = "kernel or unknown"
 
 
+def machine_busy_s() -> float:
+    """Seconds of CPU the whole machine has spent busy (all cores; not idle, not I/O wait)."""
+    with open("/proc/stat") as fh:
+        ticks = [int(x) for x in fh.readline().split()[1:]]
+    return (sum(ticks) - ticks[3] - ticks[4]) / HZ
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--interval", type=float, default=1.0, help="seconds between readings")
@@ -100,13 +109,13 @@ def main() -> int:
     if not os.path.isdir("/proc/self"):
         parser.error("this needs Linux's /proc")
     seen, kinds = {}, {}
-    start = time.monotonic()
+    start, busy0 = time.monotonic(), machine_busy_s()
     child = subprocess.Popen(command)
     me = os.getpid()
     while child.poll() is None:
         sample(me, seen, kinds)
         time.sleep(args.interval)
-    wall = time.monotonic() - start
+    wall, busy = time.monotonic() - start, machine_busy_s() - busy0
     totals, counts = collections.Counter(), collections.Counter()
     for key, cpu in seen.items():
         totals[kinds[key]] += cpu
@@ -119,10 +128,13 @@ def main() -> int:
         print(f"| {r['kind']} | {r['cpu_s']:.1f} | {r['share']:.0%} | {r['processes']} |")
     cores = os.cpu_count() or 1
     print(f"\nwall {wall:.1f} s; CPU seen {total:.1f} s = {total / wall / cores:.0%} of "
-          f"{cores} cores (processes shorter than --interval are missed)", file=sys.stderr)
+          f"{cores} cores (processes shorter than --interval are missed); the machine "
+          f"busy {busy:.1f} s, {busy / wall:.2f} of its {cores} cores on average",
+          file=sys.stderr)
     if args.out:
         with open(args.out, "w", encoding="utf-8") as fh:
-            json.dump({"wall_s": round(wall, 1), "cores": cores, "rows": rows}, fh, indent=1)
+            json.dump({"wall_s": round(wall, 1), "cores": cores, "rows": rows,
+                       "machine_busy_s": round(busy, 1)}, fh, indent=1)
     return child.returncode
 
 

@@ -225,6 +225,9 @@ def test_cpu_by_process_sums_a_commands_processes_by_kind(tmp_path):
     assert [r["kind"] for r in report["rows"]] == ["python -c import"], report
     assert 0.7 <= report["rows"][0]["cpu_s"] <= 1.5, report  # the child's spin, seen
     assert report["rows"][0]["processes"] == 2, report  # the command and its child
+    # The whole machine was busy at least as long as the child spun.
+    assert report["machine_busy_s"] >= 0.7, report
+    assert "the machine busy" in done.stderr
     assert "| process kind | CPU s | share | processes |" in done.stdout
 
 
