@@ -14,10 +14,10 @@ prints the median time per message. Here (2026-11-28, Bokeh 3.9.2): reproduced, 
 1 400 models: 0.03 -> 0.70 ms per message with Bokeh's serializer, 0.02 -> 0.21 ms with the
 references made as met.
 
-Not worked around in this project: the One support tab holds ~530 models, so the table
-costs ~0.25 ms per message by this script, and a slider move sends about two messages
-against the ~22 ms of server CPU a move costs (``benchmarks/served_moves.py``): a few per
-cent, too little for a private touch (``app/edge.py`` keeps three).
+Not worked around in this project: ``benchmarks/bench_messages.py`` measures it on the
+dashboard's own page (533 models): ~0.2-0.4 ms of a move's ~0.8 ms message, ~1-4 % of the
+~22 ms of server CPU a move costs (``benchmarks/served_moves.py``), too little for a
+private touch (``app/edge.py`` keeps three).
 """
 import statistics
 import sys
