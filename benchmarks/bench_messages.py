@@ -26,6 +26,8 @@ import sys
 import time
 from pathlib import Path
 
+from spread import spread
+
 #: The sliders moved, each over its range (log10 for the stiffnesses and the load).
 SLIDERS = {"theta0": lambda r: r.uniform(0.0, 359.0),
            "k_r": lambda r: 10 ** r.uniform(-2.0, 0.47),
@@ -82,8 +84,6 @@ def check_as_met(serializer, module) -> None:
     """Both serializers encode what the table is for alike: a property set to a model the
     page has (sent as its reference) and to a new one (sent whole). (A move's own events
     name their models by reference directly: they never consult the table.)"""
-    import json as _json
-
     from bokeh.document import Document
     from bokeh.models import ColumnDataSource, Title
     from bokeh.plotting import figure
@@ -99,7 +99,7 @@ def check_as_met(serializer, module) -> None:
         doc.on_change(lambda event, events=events: events.append(event))
         line.data_source = other        # a model the page has
         fig.title = Title(text="new")   # a new model
-        sent = _json.loads(_encode(events, chosen, module, 1)[1].content_json)["events"]
+        sent = json.loads(_encode(events, chosen, module, 1)[1].content_json)["events"]
         if sent[0]["new"] != {"id": other.id} or sent[1]["new"].get("type") != "object":
             raise AssertionError(f"{name} serializer: a known model must go as its reference "
                                  f"and a new one whole, not {sent}")
@@ -145,21 +145,18 @@ def run(moves: int = 40, repeats: int = 5, seed: int = 3) -> dict:
                          "bokeh_ms": own_ms, "as_met_ms": met_ms})
     finally:
         work_pool().shutdown()
+    if not rows:
+        raise RuntimeError(f"none of the {moves} moves changed the page: nothing to encode")
 
-    def spread(key):
-        values = [r[key] for r in rows]
-        return {"median": statistics.median(values), "min": min(values), "max": max(values)}
+    def of(key):
+        return spread(r[key] for r in rows)
     return {"models": len(doc.models), "messages": len(rows), "repeats": repeats,
-            "bokeh_ms": spread("bokeh_ms"), "as_met_ms": spread("as_met_ms"),
-            "table_ms": spread_of([r["bokeh_ms"] - r["as_met_ms"] for r in rows]),
-            "events": spread("events"), "buffers": spread("buffers"),
-            "json_bytes": spread("json_bytes"), "rows": rows,
+            "bokeh_ms": of("bokeh_ms"), "as_met_ms": of("as_met_ms"),
+            "table_ms": spread(r["bokeh_ms"] - r["as_met_ms"] for r in rows),
+            "events": of("events"), "buffers": of("buffers"),
+            "json_bytes": of("json_bytes"), "rows": rows,
             "machine": f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores",
             "load_average": os.getloadavg()[0], "date": time.strftime("%Y-%m-%d %H:%M")}
-
-
-def spread_of(values) -> dict:
-    return {"median": statistics.median(values), "min": min(values), "max": max(values)}
 
 
 def text(found: dict) -> str:

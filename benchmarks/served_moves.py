@@ -62,18 +62,20 @@ async def _drive(base: str, pid: int, sessions: int, moves: int, blocks: int,
     if profile_path is not None:  # the blocks' moves only, not the opening
         from load_profile import ServerProfiler
         profiler = ServerProfiler(pid, profile_path, subprocesses=False)
-    for _ in range(blocks):
-        cpu, n_patches = _cpu_s(pid), sum(s.patches for s in opened)
-        n_buffers = sum(s.buffers for s in opened)
-        await asyncio.gather(*(run(s) for s in opened))
-        n = sessions * moves
-        per_move.append((_cpu_s(pid) - cpu) / n * 1e3)
-        patches.append((sum(s.patches for s in opened) - n_patches) / n)
-        buffers.append((sum(s.buffers for s in opened) - n_buffers) / n)
+    try:
+        for _ in range(blocks):
+            cpu, n_patches = _cpu_s(pid), sum(s.patches for s in opened)
+            n_buffers = sum(s.buffers for s in opened)
+            await asyncio.gather(*(run(s) for s in opened))
+            n = sessions * moves
+            per_move.append((_cpu_s(pid) - cpu) / n * 1e3)
+            patches.append((sum(s.patches for s in opened) - n_patches) / n)
+            buffers.append((sum(s.buffers for s in opened) - n_buffers) / n)
+    finally:  # py-spy stops with the blocks, whatever happened in them
+        problem = profiler.stop() if profiler is not None else None
     profiled = None
     if profiler is not None:
         from load_profile import summarise
-        problem = profiler.stop()
         profiled = {"error": problem} if problem else summarise(profile_path)
     for s in opened:
         await s.close()

@@ -278,9 +278,9 @@ def test_served_moves_are_measured_and_profiled(tmp_path):
     report = (tmp_path / "dashboard.md").read_text()
     assert "Served, 1 sessions, 2 blocks of 3 moves" in report
     profiled = served["profile"]
-    if "error" in profiled:  # py-spy is the bench extra's, not the tests'
-        assert shutil.which("py-spy") is None and "pip install" in profiled["error"], profiled
-        assert "No profile of the served moves" in report
+    if "error" in profiled:  # py-spy is the bench extra's, not the tests'; or not allowed
+        assert profiled["error"].startswith("py-spy"), profiled  # says why
+        assert f"No profile of the served moves: {profiled['error']}" in report
     else:
         assert profiled["by_process"]["server"] > 0 and "server" in profiled["layers"]
         assert "Where the served server's time went" in report
