@@ -8,8 +8,12 @@
 * The serving edge's guards (``app.edge``: security headers, the busy page before any
   session, the guard on Panel's address reader) are installed on the tested stack; on
   another one the server says so in one line.
+* Bokeh's expensive error diagnostics are off in the server (``quiet_diagnostics``).
 """
 import logging
+import os
+
+from bokeh.settings import settings
 
 from app.edge import install
 from app.jobs import start_warm_up
@@ -19,8 +23,31 @@ from app.pages import page_gate
 
 log = logging.getLogger(__name__)
 
+#: The environment variable of Bokeh's setting ``perform_error_diagnostics``.
+DIAGNOSTICS_ENV = "BOKEH_PERFORM_ERROR_DIAGNOSTICS"
+
+
+def quiet_diagnostics(environ=os.environ) -> bool:
+    """Turn off Bokeh's "expensive error diagnostics" for this server, unless the
+    environment sets ``BOKEH_PERFORM_ERROR_DIAGNOSTICS`` (a developer's choice wins).
+    Returns whether it turned them off.
+
+    With them on (Bokeh's default), every attribute a model lacks is answered with
+    close-match suggestions (``difflib``) and every callback's signature is checked when it
+    is attached. Panel reads an attribute each of its custom components lacks at every
+    update (``docs/upstream/esm_update_attribute_miss.py``), so each text written in place
+    paid for suggestions nobody reads; the page build checked every callback.
+    ``benchmarks/bench_diagnostics.py`` measures both with the setting on and off.
+    """
+    if DIAGNOSTICS_ENV in environ:
+        return False
+    settings.perform_error_diagnostics.set_value(False)
+    return True
+
 
 def on_server_loaded(server_context):
+    if quiet_diagnostics():
+        log.info("Bokeh's error diagnostics off (set %s=true to keep them)", DIAGNOSTICS_ENV)
     install(BUSY_HTML, lambda remote_ip: page_gate().has_room(remote_ip))
     if start_warm_up():  # the solver compiles in the background: no results to show yet
         return

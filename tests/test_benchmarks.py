@@ -314,3 +314,19 @@ def test_profile_summary_counts_waiting_threads_as_idle(tmp_path):
     assert [(r[1], r[2], r[3]) for r in rows] == [
         ("idle (waiting)", "90", ""), ("Bokeh serialisation (JSON, buffers)", "7", "70%"),
         ("param", "3", "30%")], rows
+
+
+def test_diagnostics_benchmark_measures_both_settings(tmp_path):
+    """``bench_diagnostics.py``: a page build and slider moves with Bokeh's diagnostics on
+    and off, each figure with its spread, and the attribute misses a move makes."""
+    out = _run("bench_diagnostics.py", tmp_path)
+    found = json.loads((tmp_path / "bench_diagnostics.json").read_text())
+    assert found["rounds"] == 1 and found["moves"] == 4
+    for setting in ("on", "off"):
+        for key in ("build_s", "move_ms"):
+            s = found[setting][key]
+            assert _spread_ok(s["min"], s["median"], s["max"]), (setting, key, s)
+        assert found[setting]["misses_per_move"]["median"] >= 1, found[setting]
+    assert "diagnostics on" in out and "diagnostics off" in out
+    from bokeh.settings import settings
+    assert settings.perform_error_diagnostics() is True  # this process untouched

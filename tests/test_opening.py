@@ -159,6 +159,7 @@ def test_a_rehearsal_that_fails_leaves_the_server_serving(monkeypatch, caplog):
 
     def broken():
         raise RuntimeError("no page")
+    monkeypatch.setattr(hooks, "quiet_diagnostics", lambda: False)
     monkeypatch.setattr(hooks, "install", lambda *args: None)
     monkeypatch.setattr(hooks, "start_warm_up", lambda: False)
     monkeypatch.setattr(hooks, "rehearse", broken)
