@@ -2,8 +2,9 @@
 (a sampling profiler: ``pip install -e ".[bench]"``) records the ``panel serve`` process and,
 with ``--subprocesses``, its worker processes, without changing them; the raw stacks are
 summarised by layer (the model, the app's own code, Panel, Bokeh's serialisation,
-Tornado and the websocket, the event loop waiting) and by the functions that hold most
-samples themselves.
+Tornado and the websocket, the event loop waiting), by the functions that hold most
+samples themselves and by the dashboard's functions with all they call (the busy samples
+with the function on their stack: what the server would save without it).
 
     python benchmarks/load_profile.py bench-out/server-profile.txt   # summarise a record
 """
@@ -73,11 +74,18 @@ def _frames(stack: str) -> list[str]:
     return [f for f in stack.split(";") if f]
 
 
+#: A frame of the dashboard's code: its function and file, without the line.
+APP_FRAME = re.compile(r"^(.+) \((app/[^:]+):\d+\)$")
+
+
 def summarise(path: Path, top: int = 15) -> dict:
-    """Samples by process, layer (innermost matching frame) and self time of functions."""
+    """Samples by process, layer (innermost matching frame) and self time of functions;
+    the server's busy samples by the dashboard functions on their stack (inclusive)."""
     by_process: collections.Counter = collections.Counter()
     layers: dict = collections.defaultdict(collections.Counter)
     functions: collections.Counter = collections.Counter()
+    app_functions: collections.Counter = collections.Counter()
+    server_busy = 0
     total = 0
     for line in Path(path).read_text(encoding="utf-8", errors="replace").splitlines():
         stack, _, count = line.rpartition(" ")
@@ -98,10 +106,16 @@ def summarise(path: Path, top: int = 15) -> dict:
             layer = next((name for f in reversed(frames) for name, rx in LAYERS
                           if rx.search(f)), "other")
             functions[f"{kind}: {inner}"] += n
+            if kind == "server" and layer != LAYERS[0][0]:  # not the sleeping watchdog
+                server_busy += n
+                on_stack = {f"{m[1]} ({m[2]})" for m in map(APP_FRAME.match, frames) if m}
+                for name in on_stack:
+                    app_functions[name] += n
         layers[kind][layer] += n
     return {"samples": total, "by_process": dict(by_process),
             "layers": {k: dict(v.most_common()) for k, v in layers.items()},
-            "top_functions": functions.most_common(top)}
+            "top_functions": functions.most_common(top),
+            "server_busy": server_busy, "app_inclusive": app_functions.most_common(top)}
 
 
 def markdown(summary: dict) -> str:
@@ -114,6 +128,12 @@ def markdown(summary: dict) -> str:
             lines.append(f"| {kind} | {name} | {n} | {share} |")
     lines += ["", "| function (self samples, not waiting) | samples |", "|---|---:|"]
     lines += [f"| `{name}` | {n} |" for name, n in summary["top_functions"]]
+    busy = summary.get("server_busy") or 0
+    if busy and summary.get("app_inclusive"):
+        lines += ["", "| dashboard function, with all it calls (server) | samples | "
+                  "share of the server's busy time |", "|---|---:|---:|"]
+        lines += [f"| `{name}` | {n} | {n / busy:.0%} |"
+                  for name, n in summary["app_inclusive"]]
     return "\n".join(lines) + "\n"
 
 

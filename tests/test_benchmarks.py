@@ -316,6 +316,33 @@ def test_profile_summary_counts_waiting_threads_as_idle(tmp_path):
         ("param", "3", "30%")], rows
 
 
+def test_profile_summary_counts_each_dashboard_function_with_what_it_calls(tmp_path):
+    """``load_profile.py``: a dashboard function's share is of the server's busy samples
+    with it on the stack (counted once per stack, lines merged); waiting and the sleeping
+    watchdog are not busy."""
+    loop = "<module> (panel:8);BaseEventLoop.run_forever (asyncio/base_events.py:607)"
+    locked = "Slot._locked.<locals>.locked (app/slot.py:278)"
+    raw = tmp_path / "raw.txt"
+    raw.write_text("\n".join([
+        f"{loop};EpollSelector.select (selectors.py:468) 40",
+        "Thread._bootstrap (threading.py:1002);WorkPool._watch (app/jobs.py:210) 20",
+        f"{loop};{locked};SupportView._draw_support (app/views/support.py:153);"
+        "Parameter.__set__ (param/parameterized.py:2058) 6",
+        f"{loop};{locked};SupportView._draw_support (app/views/support.py:163);"
+        "SupportView._draw_support (app/views/support.py:170) 2",
+        f"{loop};{locked};HeadlineView._write (app/views/readouts.py:310) 4",
+        f"{loop};Serializer.__init__ (bokeh/core/serialization.py:226) 8"]) + "\n")
+    done = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "load_profile.py"),
+                           str(raw)], cwd=ROOT, capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr[-2000:]
+    rows = {r[0].strip("` "): (r[1].strip(), r[2].strip()) for r in
+            ([c for c in line.strip("|").split("|")] for line in done.stdout.splitlines()
+             if line.startswith("| `") and "(app/" in line and "server:" not in line)}
+    assert rows == {"Slot._locked.<locals>.locked (app/slot.py)": ("12", "60%"),
+                    "SupportView._draw_support (app/views/support.py)": ("8", "40%"),
+                    "HeadlineView._write (app/views/readouts.py)": ("4", "20%")}, rows
+
+
 def test_diagnostics_benchmark_measures_both_settings(tmp_path):
     """``bench_diagnostics.py``: a page build and slider moves with Bokeh's diagnostics on
     and off, each figure with its spread, and the attribute misses a move makes."""
