@@ -133,21 +133,26 @@ def text(found: dict) -> str:
     return "\n".join(lines)
 
 
+#: The sizes of ``--quick`` (for CI): one round of a few moves.
+QUICK = {"rounds": 1, "moves": 4}
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--rounds", type=int, default=3, help="rounds, each setting once (3)")
     ap.add_argument("--moves", type=int, default=30, help="slider moves per page (30)")
-    ap.add_argument("--quick", action="store_true", help="1 round of 4 moves (for CI)")
+    ap.add_argument("--quick", action="store_true",
+                    help=f"{QUICK['rounds']} round of {QUICK['moves']} moves (for CI)")
     ap.add_argument("--out", default="bench-out", help="output folder (default bench-out)")
     args = ap.parse_args(argv)
-    if args.quick:
-        args.rounds, args.moves = 1, 4
-    if args.rounds < 1 or args.moves < 1:
-        ap.error(f"--rounds {args.rounds} and --moves {args.moves} must be at least 1")
-    found = run(args.rounds, args.moves)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "bench_diagnostics.json").write_text(json.dumps(found, indent=1))
+    sizes = dict(QUICK) if args.quick else {"rounds": args.rounds, "moves": args.moves}
+    for name, value in sizes.items():
+        if value < 1:
+            ap.error(f"--{name} {value}: give at least 1")
+    found = run(**sizes)
+    path = Path(args.out) / "bench_diagnostics.json"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(found, indent=1))
     print(text(found))
     return 0
 

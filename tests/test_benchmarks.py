@@ -343,6 +343,7 @@ def test_profile_summary_counts_each_dashboard_function_with_what_it_calls(tmp_p
                     "HeadlineView._write (app/views/readouts.py)": ("4", "20%")}, rows
 
 
+@pytest.mark.slow
 def test_diagnostics_benchmark_measures_both_settings(tmp_path):
     """``bench_diagnostics.py``: a page build and slider moves with Bokeh's diagnostics on
     and off, each figure with its spread, and the attribute misses a move makes."""

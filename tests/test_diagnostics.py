@@ -56,6 +56,7 @@ def test_a_missing_attribute_still_raises_without_the_diagnostics(restored):
         Div().txt = "x"
 
 
+@pytest.mark.slow
 def test_the_panel_behaviour_is_reproduced():
     """Canary: the day Panel stops reading attributes its custom components' models lack,
     this fails, and the reproducer and the setting's reason are to be revisited."""
