@@ -19,9 +19,11 @@ import subprocess
 import sys
 from pathlib import Path
 
+#: The work pool's watchdog: a loop that sleeps between its checks, sampled as if busy.
+WATCHDOG = "work-pool watchdog (a sleeping loop)"
 #: Frames that identify a layer, tried in order on each stack from the innermost frame out.
 LAYERS = (
-    ("work-pool watchdog (a sleeping loop)", re.compile(r"^WorkPool\._watch \(")),
+    (WATCHDOG, re.compile(r"^WorkPool\._watch \(")),
     ("model (numerics)", re.compile(r"\((model/|numba/|scipy/)")),
     ("pickling results between processes", re.compile(r"\((multiprocessing/|concurrent/futures/process|pickle)")),
     ("Bokeh serialisation (JSON, buffers)", re.compile(
@@ -106,7 +108,7 @@ def summarise(path: Path, top: int = 15) -> dict:
             layer = next((name for f in reversed(frames) for name, rx in LAYERS
                           if rx.search(f)), "other")
             functions[f"{kind}: {inner}"] += n
-            if kind == "server" and layer != LAYERS[0][0]:  # not the sleeping watchdog
+            if kind == "server" and layer != WATCHDOG:
                 server_busy += n
                 on_stack = {f"{m[1]} ({m[2]})" for m in map(APP_FRAME.match, frames) if m}
                 for name in on_stack:
