@@ -23,28 +23,17 @@ diagnostics off unless ``BOKEH_PERFORM_ERROR_DIAGNOSTICS`` is set (``app/app_hoo
 the dashboard's page.
 """
 import statistics
-import time
 
 import panel as pn
-import param
 from bokeh.core.has_props import HasProps
-from bokeh.document import Document
 from bokeh.settings import settings
-from panel.custom import JSComponent
 
-
-class Live(JSComponent):
-    """A text written in place, as an accessible live region would be."""
-
-    text = param.String(default="")
-    _esm = "export function render({ model, el }) { el.textContent = model.text }"
+from harness import live_text, text_updates_ms
 
 
 def updates(n: int = 200):
-    """(misses per update, median ms per update) for ``n`` changes of the text."""
-    doc = Document()
-    live = Live()
-    doc.add_root(live.get_root(doc))
+    """(misses per update, median ms per update) for ``n`` changes of a text."""
+    live, _doc = live_text()
     misses = [0]
     raise_with_matches = HasProps._raise_attribute_error_with_matches
 
@@ -53,12 +42,8 @@ def updates(n: int = 200):
         return raise_with_matches(self, name, properties)
 
     HasProps._raise_attribute_error_with_matches = counted
-    times = []
     try:
-        for i in range(n):
-            start = time.perf_counter()
-            live.text = f"update {i}"
-            times.append((time.perf_counter() - start) * 1e3)
+        times = text_updates_ms(live, n)
     finally:
         HasProps._raise_attribute_error_with_matches = raise_with_matches
     return misses[0] / n, statistics.median(times)

@@ -1,5 +1,6 @@
 """Serving a plain Panel app on a free loopback port and opening it in headless Chromium,
-for the reproducers in this folder (each runs as ``python docs/upstream/<name>.py``)."""
+and a text component in a document timed as its text changes, for the reproducers in
+this folder (each runs as ``python docs/upstream/<name>.py``)."""
 from __future__ import annotations
 
 import contextlib
@@ -78,3 +79,29 @@ def pages_failing(app, error: str, rounds: int) -> int:
     print(f"REPRODUCED on {failed} of {rounds} pages" if failed
           else f"not reproduced on {rounds} pages")
     return failed
+
+
+def live_text():
+    """A one-parameter custom component (a text written in place) in a document, as the
+    page has it: (the component, its document)."""
+    import param
+    from bokeh.document import Document
+    from panel.custom import JSComponent
+
+    class Live(JSComponent):
+        text = param.String(default="")
+        _esm = "export function render({ model, el }) { el.textContent = model.text }"
+
+    doc, live = Document(), Live()
+    doc.add_root(live.get_root(doc))
+    return live, doc
+
+
+def text_updates_ms(live, n: int) -> list[float]:
+    """Milliseconds of each of ``n`` changes of ``live``'s text."""
+    times = []
+    for i in range(n):
+        start = time.perf_counter()
+        live.text = f"update {i}"
+        times.append((time.perf_counter() - start) * 1e3)
+    return times
