@@ -5,8 +5,9 @@ a slider move, with the setting on (Bokeh's default) and off (the served dashboa
     python benchmarks/bench_diagnostics.py [--rounds 3] [--moves 30] [--quick] [--out DIR]
 
 The dashboard is built in a Bokeh document as the server builds it (``Dashboard`` on the One
-support tab, the page's models marked as sent) and random moves of the four sliders
-(seeded, the same in every round) are made, their results applied (computed by the work
+support tab, the page's models marked as sent; ``bench_messages.dashboard_page``) and random
+moves of the four sliders (``bench_messages.SLIDERS``, seeded, the same in every round) are
+made, their results applied (computed by the work
 pool, without a server). A first round with the diagnostics on computes every result, so
 the measured rounds read them all from the cache. Then each round builds and moves once
 with the setting on and once off, in alternating order. Measured: this process's CPU time
@@ -28,13 +29,8 @@ import sys
 import time
 from pathlib import Path
 
+from bench_messages import SLIDERS, dashboard_page
 from spread import spread
-
-#: The sliders moved, each over its range (log10 for the stiffnesses and the load).
-SLIDERS = {"theta0": lambda r: round(r.uniform(0.0, 359.0), 1),
-           "k_r": lambda r: round(10 ** r.uniform(-2.0, 0.47), 3),
-           "k_theta": lambda r: round(10 ** r.uniform(-2.0, 0.47), 3),
-           "F_N": lambda r: round(10 ** r.uniform(-1.0, 1.0), 3)}
 
 
 def _moves(n: int, seed: int) -> list[tuple[str, float]]:
@@ -70,17 +66,8 @@ class _Misses:
 
 def _session(moves: list) -> dict:
     """One page built and moved: CPU seconds of the build, ms per move, misses per move."""
-    import panel as pn
-    from bokeh.document import Document
-
-    from app.state import ExplorerState
-    from app.views import Dashboard
-
     start = time.process_time()
-    doc = Document()
-    page = Dashboard(ExplorerState())
-    doc.add_root(pn.panel(page).get_root(doc))
-    doc.models.flush_synced()  # the page as sent to the browser
+    _doc, page = dashboard_page()
     build_s = time.process_time() - start
     times = []
     with _Misses() as misses:

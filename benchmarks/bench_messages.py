@@ -105,22 +105,31 @@ def check_as_met(serializer, module) -> None:
                                  f"and a new one whole, not {sent}")
 
 
-def run(moves: int = 40, repeats: int = 5, seed: int = 3) -> dict:
+def dashboard_page():
+    """The dashboard built in a Bokeh document as the server builds it, on the One support
+    tab, its models marked as sent to the browser: (document, ``Dashboard``)."""
     import panel as pn
     from bokeh.document import Document
-    from bokeh.protocol.messages import patch_doc  # noqa: F401 (loads the module)
 
-    from app.jobs import work_pool
     from app.state import ExplorerState
     from app.views import Dashboard
 
-    module = sys.modules["bokeh.protocol.messages.patch_doc"]
-    bokeh_own, as_met = module.Serializer, _as_met_serializer()
-    check_as_met(as_met, module)
     doc = Document()
     page = Dashboard(ExplorerState())
     doc.add_root(pn.panel(page).get_root(doc))
     doc.models.flush_synced()  # the page as sent to the browser
+    return doc, page
+
+
+def run(moves: int = 40, repeats: int = 5, seed: int = 3) -> dict:
+    from bokeh.protocol.messages import patch_doc  # noqa: F401 (loads the module)
+
+    from app.jobs import work_pool
+
+    module = sys.modules["bokeh.protocol.messages.patch_doc"]
+    bokeh_own, as_met = module.Serializer, _as_met_serializer()
+    check_as_met(as_met, module)
+    doc, page = dashboard_page()
     recorder = _Recorder()
     doc.callbacks.on_change_dispatch_to(recorder)
     rng = random.Random(seed)

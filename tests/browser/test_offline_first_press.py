@@ -46,7 +46,8 @@ def test_the_rehearsal_leaves_the_figures_as_they_were(offline):
         if (seen.length > 600) break;
       }}
       seen.push(shown());  // and once it is over
-      return {{start, seen}}; }}""")
+      return {{uniform: {UNIFORM}, start, seen}}; }}""")
+    assert watched["uniform"] >= 1, "the uniform array was not drawn within 120 s"
     frames = watched["seen"]
     assert page.evaluate("explorer.rehearsed") == n
     assert len(frames) - 1 >= (n - watched["start"]) // 2, watched["start"]
