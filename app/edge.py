@@ -29,11 +29,18 @@ The touches, and what each buys:
    The same page code gives the "Figure (SVG)" buttons ``window.mp_export_svg``: BokehJS
    offers a figure's SVG only through its drawn view (what the toolbar's save tool does
    for a figure drawn in SVG); on another stack the buttons point to the save tool.
+   The same page code applies the offline page's BokehJS fix (``app/offline/bokeh_fix.js``,
+   one file for both pages; ``page_js``): each paint of a figure rewrote its renderers'
+   ``<style>`` elements with their own text, and the styles were recalculated for each
+   (``docs/upstream/bokehjs_style_rewrite.py``). The browser's work per key press, with
+   the fix and without: ``benchmarks/bench_style_fix.py``.
 """
 from __future__ import annotations
 
+import json
 import logging
 import re
+from pathlib import Path
 
 log = logging.getLogger(__name__)
 
@@ -225,10 +232,23 @@ window.mp_export_svg = function (names, prefix) {
 """
 
 
+#: BokehJS's rewrite of unchanged ``<style>`` elements: the offline page's fix, the same file.
+BOKEH_FIX_JS = Path(__file__).parent / "offline" / "bokeh_fix.js"
+
+
+def page_js() -> str:
+    """The page's code on the tested stack: ``MARKUP_GUARD_JS``, then ``BOKEH_FIX_JS``
+    applied to the BokehJS version tested (``window.MicropillarBokehFix`` says whether it
+    was and why not)."""
+    fix = BOKEH_FIX_JS.read_text(encoding="utf-8")
+    return (f"{MARKUP_GUARD_JS}\n(function () {{\n{fix}\n}}).call(window);\n"
+            f"MicropillarBokehFix.apply(Bokeh, {json.dumps(TESTED['bokeh'])});\n")
+
+
 def guard_markup_views(doc) -> None:
-    """Install ``MARKUP_GUARD_JS`` in ``doc``'s page when it is ready (tested stack only)."""
+    """Install ``page_js()`` in ``doc``'s page when it is ready (tested stack only)."""
     if doc is None or not on_tested_stack():
         return
     from bokeh.models import CustomJS
 
-    doc.js_on_event("document_ready", CustomJS(code=MARKUP_GUARD_JS))
+    doc.js_on_event("document_ready", CustomJS(code=page_js()))

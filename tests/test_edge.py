@@ -88,14 +88,19 @@ def test_canary_panels_text_views_make_their_container_when_drawn():
     assert "this.container = (0, dom_1.div)();" in view
 
 
-def test_the_text_view_guard_is_in_the_page_on_the_tested_stack(monkeypatch):
+def test_the_page_guards_and_the_bokehjs_fix_are_in_the_page_on_the_tested_stack(monkeypatch):
     from bokeh.document import Document
     from bokeh.models import CustomJS
 
     doc = Document()
     edge.guard_markup_views(doc)
     callbacks = doc.callbacks.js_event_callbacks.get("document_ready", [])
-    assert [c.code for c in callbacks if isinstance(c, CustomJS)] == [edge.MARKUP_GUARD_JS]
+    assert [c.code for c in callbacks if isinstance(c, CustomJS)] == [edge.page_js()]
+    code = edge.page_js()
+    assert code.startswith(edge.MARKUP_GUARD_JS)
+    # The offline page's BokehJS fix, the same file, applied to the BokehJS version tested.
+    assert edge.BOKEH_FIX_JS.read_text(encoding="utf-8") in code
+    assert f'MicropillarBokehFix.apply(Bokeh, "{edge.TESTED["bokeh"]}");' in code
     monkeypatch.setattr(edge, "versions", lambda: dict(edge.TESTED, bokeh="9.9.9"))
     other = Document()
     edge.guard_markup_views(other)

@@ -1,5 +1,6 @@
-/* The offline page's one workaround in BokehJS: a figure's paint rewrites its renderers'
- * <style> elements even when their text is unchanged.
+/* The one workaround in BokehJS of the offline page and of the served one (app/edge.py,
+ * ``page_js``): a figure's paint rewrites its renderers' <style> elements even when their
+ * text is unchanged.
  *
  * Each renderer (glyphs, axes, grids, the legend) writes its position into a <style> of its
  * own at every paint (``update_position`` -> ``InlineStyleSheet.replace`` -> ``_update``,

@@ -9,33 +9,7 @@ from app.edge import TESTED
 
 from .offline_tools import (DRAWN, POLAR, UNIFORM, Offline,  # noqa: F401 (fixtures)
                             explorer_file, offline)
-
-#: Watches (anew) every <style> in the page and in its shadow roots (BokehJS's views have one
-#: each); ``window.styleWrites`` counts rewrites with the same text and with another.
-WATCH = """() => {
-  (window.styleWatchers || []).forEach((o) => o.disconnect());
-  window.styleWatchers = [];
-  window.styleWrites = {same: 0, changed: 0};
-  const seen = (records) => records.forEach((r) => {
-    if (r.type !== "childList" || r.target.tagName !== "STYLE") return;
-    const old = [...r.removedNodes].map((n) => n.textContent).join("");
-    const now = [...r.addedNodes].map((n) => n.textContent).join("");
-    window.styleWrites[old === now ? "same" : "changed"] += 1;
-  });
-  const watch = (root) => {
-    const watcher = new MutationObserver(seen);
-    watcher.observe(root, {childList: true, subtree: true});
-    window.styleWatchers.push(watcher);
-    root.querySelectorAll("*").forEach((el) => { if (el.shadowRoot) watch(el.shadowRoot); });
-  };
-  watch(document);
-}"""
-#: BokehJS's own method back (``own``) or the workaround again.
-USE = """(own) => {
-  const proto = Bokeh.require("core/dom").InlineStyleSheet.prototype;
-  window.fixed = window.fixed || proto._update;
-  proto._update = own ? MicropillarBokehFix.original : window.fixed;
-}"""
+from .style_watch import USE, WATCH
 
 
 def _press_and_count(offline, presses: int = 3) -> dict:
@@ -66,10 +40,11 @@ def test_a_key_press_rewrites_no_style_with_its_own_text(offline):
     own = _press_and_count(offline)
     page.evaluate(USE, False)
     # The canary: BokehJS's own method rewrites unchanged styles at every paint. When this
-    # fails, BokehJS has fixed it: delete app/offline/bokeh_fix.js and its tests.
+    # fails, BokehJS has fixed it: delete app/offline/bokeh_fix.js, its use in app/edge.py
+    # (``page_js``) and their tests.
     assert own["same"] >= 3 * 10, (
         f"BokehJS {TESTED['bokeh']} no longer rewrites unchanged <style> elements in a paint "
-        f"({own}): the workaround app/offline/bokeh_fix.js can go")
+        f"({own}): the workaround app/offline/bokeh_fix.js can go (also from app/edge.py)")
     again = _press_and_count(offline)
     assert again["same"] == 0, again
     # What changes is still written (the same press redraws with the workaround or without).
