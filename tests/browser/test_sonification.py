@@ -182,7 +182,10 @@ def _sounding_then(page, leave, come_back) -> None:
     page.wait_for_timeout(600)
     assert not _playing(page) and not _sound(page)["running"]
     pt.click_button(page, "Play")
-    pt.wait_for(page, lambda: _sound(page)["running"], what="the tone again after Play")
+    pt.wait_for(page, lambda: _sound(page)["running"],
+                what=lambda: f"the tone again after Play (playing: {_playing(page)}, "
+                             f"the page hidden: {page.evaluate('document.hidden')}, "
+                             f"{_sound(page)})")
     pt.click_button(page, "Pause")
 
 
