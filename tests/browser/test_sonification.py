@@ -160,6 +160,11 @@ def _playing(page) -> bool:
         (m) => m.name === "support_player_play").active""")
 
 
+def _support_tab_shown(page) -> bool:
+    return page.evaluate("""() => [...Bokeh.documents[0].all_models].find(
+        (m) => (m.css_classes || []).includes("main-tabs")).active === 0""")
+
+
 def _frame(page) -> int:
     return _sound(page)["player_frame"]
 
@@ -179,6 +184,9 @@ def _sounding_then(page, leave, come_back) -> None:
     page.wait_for_timeout(600)
     assert _frame(page) == stopped, "frames drawn on a hidden tab"
     come_back()
+    # The One support tab shown again (the tab bar's change goes through the server): until
+    # then a "Play" button on screen is another tab's player's.
+    pt.wait_for(page, lambda: _support_tab_shown(page), what="the One support tab again")
     page.wait_for_timeout(600)
     assert not _playing(page) and not _sound(page)["running"]
     pt.click_button(page, "Play")
