@@ -37,6 +37,7 @@ The touches, and what each buys:
 """
 from __future__ import annotations
 
+import functools
 import json
 import logging
 import re
@@ -236,10 +237,11 @@ window.mp_export_svg = function (names, prefix) {
 BOKEH_FIX_JS = Path(__file__).parent / "offline" / "bokeh_fix.js"
 
 
+@functools.cache
 def page_js() -> str:
     """The page's code on the tested stack: ``MARKUP_GUARD_JS``, then ``BOKEH_FIX_JS``
     applied to the BokehJS version tested (``window.MicropillarBokehFix`` says whether it
-    was and why not)."""
+    was and why not). Read once per process."""
     fix = BOKEH_FIX_JS.read_text(encoding="utf-8")
     return (f"{MARKUP_GUARD_JS}\n(function () {{\n{fix}\n}}).call(window);\n"
             f"MicropillarBokehFix.apply(Bokeh, {json.dumps(TESTED['bokeh'])});\n")
