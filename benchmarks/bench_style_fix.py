@@ -5,10 +5,10 @@ applied by ``app.edge.page_js``) and with BokehJS's own method put back.
     python benchmarks/bench_style_fix.py [--rounds 4] [--presses 6] [--quick] [--url URL]
                                          [--out DIR]
 
-The dashboard is served (``panel serve app``; ``--url``: the one served there) and opened once in Debian's headless Chromium
-(1280x720, the One support tab). Its θ₀ slider is then pressed right and left in turn
-(the server answers from its cache after the first two: what is measured is the browser's
-work). Each round makes ``--presses`` presses with the fix and as many with BokehJS's own
+The dashboard is served (``panel serve app``; ``--url``: the one served there) and opened
+once in Debian's headless Chromium (1280x720, the One support tab). Its θ₀ slider is then
+pressed right and left in turn (the server answers from its cache after the first two: what
+is measured is the browser's work). Each round makes ``--presses`` presses with the fix and as many with BokehJS's own
 method, in alternating order. For each press: the page's renderer time from Chrome's
 performance counters (``Performance.getMetrics``: all its tasks, its scripts, its style
 recalculations and layouts) from the key press until the page's data has been still for
@@ -93,7 +93,6 @@ def run(rounds: int = 4, presses: int = 6, out: Path | str = "bench-out",
                     page.evaluate(watch["USE"], arm == "own")
                     for j in range(presses):
                         found[arm].append(_press(page, cdp, handle, keys[j % 2], tools, watch))
-            page.evaluate(watch["USE"], False)
             context.close()
         finally:
             browser.close()
