@@ -7,13 +7,13 @@ applied by ``app.edge.page_js``) and with BokehJS's own method put back.
 
 The dashboard is served (``panel serve app``; ``--url``: the one served there) and opened
 once in Debian's headless Chromium (1280x720, the One support tab). Its θ₀ slider is then
-pressed right and left in turn (the server answers from its cache after the first two: what
-is measured is the browser's work). Each round makes ``--presses`` presses with the fix and
-as many with BokehJS's own method, in alternating order. For each press: the page's renderer time from Chrome's
-performance counters (``Performance.getMetrics``: all its tasks, its scripts, its style
-recalculations and layouts) from the key press until the page's data has been still for
-0.3 s, and the page's ``<style>`` rewrites with their own text and with another. Median
-[min-max] over the presses of each arm.
+pressed right and left in turn (the server answers from its cache after the first two:
+what is measured is the browser's work). Each round makes ``--presses`` presses with the
+fix and as many with BokehJS's own method, in alternating order. For each press: the
+page's renderer time from Chrome's performance counters (``Performance.getMetrics``: all
+its tasks, its scripts, its style recalculations and layouts) from the key press until the
+page's data has been still for 0.3 s, and the page's ``<style>`` rewrites with their own
+text and with another. Median [min-max] over the presses of each arm.
 """
 from __future__ import annotations
 
