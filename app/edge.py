@@ -34,6 +34,13 @@ The touches, and what each buys:
    ``<style>`` elements with their own text, and the styles were recalculated for each
    (``docs/upstream/bokehjs_style_rewrite.py``). The browser's work per key press, with
    the fix and without: ``benchmarks/bench_style_fix.py``.
+4. **Changes queued while the websocket is busy** (``keep_queued_writes``): Panel queues a
+   change it cannot write at once and a task writes the queue; a change queued as the
+   previous write ends waited for the page's next change, because the previous write's
+   task had cleared the queue's flag and the new task, finding it cleared, returned
+   (``docs/upstream/write_queue_strands_last_change.py``). Under a class's load the last
+   position of one θ₀ drag in ~400 was never shown. Panel's writing task is wrapped: it
+   writes what it finds queued.
 """
 from __future__ import annotations
 
@@ -80,12 +87,13 @@ def untested_note() -> str | None:
         return None
     return (f"panel/bokeh/tornado {found['panel']}/{found['bokeh']}/{found['tornado']} are not "
             f"the tested {TESTED['panel']}/{TESTED['bokeh']}/{TESTED['tornado']}: the server "
-            "runs without its guards (security headers, busy page, text-view guard); see "
+            "runs without its guards (security headers, busy page, text-view guard, queued "
+            "writes); see "
             "app/edge.py")
 
 
 def install(busy_html: str, has_room) -> bool:
-    """Install the server guards 1-2 (once per process) on the tested stack; elsewhere
+    """Install the server guards 1, 2 and 4 (once per process) on the tested stack; elsewhere
     log ``untested_note()`` once. Returns whether they are installed.
 
     ``busy_html``: the page a client without room gets; ``has_room(remote_ip)``: whether
@@ -96,6 +104,7 @@ def install(busy_html: str, has_room) -> bool:
         return False
     add_security_headers()
     answer_busy_before_building(busy_html, has_room)
+    keep_queued_writes()
     return True
 
 
@@ -254,3 +263,27 @@ def guard_markup_views(doc) -> None:
     from bokeh.models import CustomJS
 
     doc.js_on_event("document_ready", CustomJS(code=page_js()))
+
+
+# ---------------------------------------------------------------------- 4. queued writes
+def keep_queued_writes() -> None:
+    """Panel writes a page's change it could not write at once from a queue
+    (``schedule_write_events``), by a task (``_dispatch_msgs``) that returns without writing
+    when the queue's flag (``_WRITE_BLOCK``) is cleared. A change queued in the turn in
+    which the previous write ended had its flag cleared by that write's task before its own
+    task ran, and stayed queued until the page's next change. Wrapped: a task that finds
+    changes queued and the flag cleared sets the flag and writes them."""
+    from panel.io import document
+
+    dispatch = document._dispatch_msgs
+    if getattr(dispatch, "_keeps_queue", False):
+        return
+
+    async def dispatch_msgs(doc):
+        if doc not in document._WRITE_BLOCK and document._WRITE_MSGS.get(doc):
+            document._WRITE_BLOCK[doc] = True
+        await dispatch(doc)
+
+    dispatch_msgs._keeps_queue = True
+    dispatch_msgs.__wrapped__ = dispatch
+    document._dispatch_msgs = dispatch_msgs

@@ -13,6 +13,8 @@ import pytest
 
 from app import edge
 
+ROOT = Path(__file__).resolve().parents[1]
+
 
 def test_the_installed_stack_is_the_tested_one():
     """A new Panel, Bokeh or Tornado: run the canaries below and the browser tests on it,
@@ -27,7 +29,7 @@ def test_on_another_stack_the_server_says_so_in_one_line_and_installs_nothing(
 
     monkeypatch.setattr(edge, "versions", lambda: dict(edge.TESTED, panel="9.9.9"))
     installed = []
-    for name in ("add_security_headers", "answer_busy_before_building"):
+    for name in ("add_security_headers", "answer_busy_before_building", "keep_queued_writes"):
         monkeypatch.setattr(edge, name, lambda *args, name=name: installed.append(name))
     with caplog.at_level(logging.WARNING, logger="app.edge"):
         assert edge.install("busy", lambda remote_ip: True) is False
@@ -86,6 +88,45 @@ def test_canary_panels_text_views_make_their_container_when_drawn():
     assert "container" not in constructor
     view = bundle[start:bundle.index("\n    }\n", start)]
     assert "this.container = (0, dom_1.div)();" in view
+
+
+def _changes_written(dispatch) -> tuple[int, int]:
+    """The reproducer's two queued changes with ``dispatch`` as Panel's writing task:
+    (written, left queued)."""
+    import asyncio
+    import runpy
+
+    from panel.io import document
+
+    reproducer = runpy.run_path(str(ROOT / "docs" / "upstream" /
+                                    "write_queue_strands_last_change.py"))
+    saved = document._dispatch_msgs, dict(document.extra_socket_handlers)
+    document._dispatch_msgs = dispatch
+    try:
+        return asyncio.run(reproducer["changes_written"]())
+    finally:
+        document._dispatch_msgs = saved[0]
+        document.extra_socket_handlers.clear()
+        document.extra_socket_handlers.update(saved[1])
+
+
+def test_canary_panel_leaves_a_change_queued_as_the_previous_write_ends():
+    """Guard 4's bug: the day Panel writes the second change, delete the guard."""
+    from panel.io import document
+
+    assert _changes_written(inspect.unwrap(document._dispatch_msgs)) == (1, 1)
+
+
+def test_with_guard_4_every_queued_change_is_written(monkeypatch):
+    from panel.io import document
+
+    monkeypatch.setattr(document, "_dispatch_msgs", inspect.unwrap(document._dispatch_msgs))
+    edge.keep_queued_writes()
+    guarded = document._dispatch_msgs
+    assert guarded._keeps_queue
+    edge.keep_queued_writes()  # once per process
+    assert document._dispatch_msgs is guarded
+    assert _changes_written(guarded) == (2, 0)
 
 
 def test_the_page_guards_and_the_bokehjs_fix_are_in_the_page_on_the_tested_stack(monkeypatch):
