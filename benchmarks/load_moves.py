@@ -15,13 +15,15 @@ DRAG_PROBABILITY, DRAG_STEPS, DRAG_GAP_S = 0.2, 4, 0.03
 #: The classroom profile: seconds between one session's moves (uniform, mean 3 s),
 #: whether or not the previous move's data has arrived (open loop).
 CLASS_GAP_S = (2.0, 4.0)
-#: The two ways a session moves its sliders (``Session.run``).
+#: The ways a session moves its sliders (``Session.run``).
 PROFILES = {
     "class": f"open loop: a slider move every {CLASS_GAP_S[0]:g}-{CLASS_GAP_S[1]:g} s "
              "(mean 3 s), sent on schedule whether or not the last one's data has arrived",
     "drag": f"closed loop: move, wait for the pushed data, pause {THINK_S[0]}-{THINK_S[1]} s, "
             f"again; one theta0 move in {round(1 / DRAG_PROBABILITY)} is a {DRAG_STEPS}-position "
             f"drag ({DRAG_GAP_S * 1e3:.0f} ms apart)",
+    "drags": f"closed loop as drag, every move a {DRAG_STEPS}-position theta0 drag: the most "
+             "updates whose last position must reach the page (0 lost is the check)",
 }
 
 
@@ -72,10 +74,12 @@ class SliderMoves:
             return False
         return name != "theta0" or self._readout_shows(value)
 
-    async def move(self, drags: bool = True) -> None:
-        """One slider move (or drag) and the wait for its update."""
-        name = self.rng.choice(self._movable())
-        drag = drags and name == "theta0" and self.rng.random() < DRAG_PROBABILITY
+    async def move(self, drags: bool = True, only_drags: bool = False) -> None:
+        """One slider move (or drag; ``only_drags``: a theta0 drag) and the wait for its
+        update."""
+        name = "theta0" if only_drags else self.rng.choice(self._movable())
+        drag = only_drags or (drags and name == "theta0"
+                              and self.rng.random() < DRAG_PROBABILITY)
         self._patched.clear()
         # A drag ends elsewhere than where it began: the server may merge a quick drag's
         # positions, and one that ends where it began changes nothing (and sends nothing).
@@ -117,7 +121,7 @@ class SliderMoves:
                 await self.run_class(until)
                 return
             while time.perf_counter() < until:
-                await self.move()
+                await self.move(only_drags=profile == "drags")
                 await asyncio.sleep(self.rng.uniform(*THINK_S))
         except Exception as exc:  # noqa: BLE001 - counted as a session failure
             self.errors.append(f"{type(exc).__name__}: {exc}")
