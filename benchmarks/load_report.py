@@ -53,7 +53,7 @@ def markdown(r: dict) -> str:
     for i, rd in enumerate(r["rounds"]):
         u = rd["updates"]
         tag = f"{i + 1}: {rd['profile']}, {rd['elapsed_s']:.0f} s"
-        rows = [("slider move -> new data pushed", u["move"])]
+        rows = [("slider move -> new data pushed", u["move"])] if u["move"]["n"] else []
         if u["drag"]["n"]:
             rows.append(("drag (last position) -> its data pushed", u["drag"]))
         if u.get("client", {}).get("n"):
