@@ -19,6 +19,12 @@ stand-in websocket (Panel's ``extra_socket_handlers``) whose writes end when the
 says; a first change is queued and written, and the second is queued in the turn its write
 ends. Here (2026-11-28): reproduced, 1 of 2 changes written, 1 left queued.
 
+Panel 1.10.0 (read, not run: it needs Python 3.12) queues the events instead of their
+messages (``_WRITE_EVENTS``), but its task still returns at once when the flag is cleared
+and clears it after its own writes, so the race is the same. Panel's main branch (read
+2026-11-28) drains the queue in a loop until it is empty and has a test for a batch
+arriving while the first is written: once released, this script and the guard go.
+
 Worked around in this project: ``app/edge.py`` (``keep_queued_writes``: the task writes
 what it finds queued), on the tested stack only; ``tests/test_edge.py`` runs this scenario
 with and without it.
