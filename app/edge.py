@@ -39,7 +39,7 @@ The touches, and what each buys:
    previous write ends waited for the page's next change, because the previous write's
    task had cleared the queue's flag and the new task, finding it cleared, returned
    (``docs/upstream/write_queue_strands_last_change.py``). Under a class's load the last
-   position of one θ₀ drag in ~400 was never shown. Panel's writing task is wrapped: it
+   position of about one θ₀ drag in 500 was never shown. Panel's writing task is wrapped: it
    writes what it finds queued.
 """
 from __future__ import annotations
@@ -88,8 +88,7 @@ def untested_note() -> str | None:
     return (f"panel/bokeh/tornado {found['panel']}/{found['bokeh']}/{found['tornado']} are not "
             f"the tested {TESTED['panel']}/{TESTED['bokeh']}/{TESTED['tornado']}: the server "
             "runs without its guards (security headers, busy page, text-view guard, queued "
-            "writes); see "
-            "app/edge.py")
+            "writes); see app/edge.py")
 
 
 def install(busy_html: str, has_room) -> bool:

@@ -67,3 +67,32 @@ def test_a_move_or_a_drag_never_ends_where_the_slider_already_was(lc):
     session.sliders = {"theta0": Slider(start=0, end=3, step=1, value=1)}
     seen = {session._position("theta0", avoid=(2.0,)) for _ in range(200)}
     assert seen == {0.0, 3.0}
+
+
+def test_in_the_drags_profile_every_move_is_a_theta0_drag(lc):
+    """``--profiles class,drags``: each move drags theta0 over ``DRAG_STEPS`` positions and
+    is timed from its last one, so a last position that never reaches the page is seen."""
+    import asyncio
+
+    from bokeh.models import Slider
+
+    session = lc.Session(0, "http://127.0.0.1:1")
+    session.sliders = {name: Slider(start=0, end=359, step=1, value=90)
+                       for name in ("theta0", "k_r", "k_theta", "F_N")}
+    sent = []
+
+    async def set_slider(name, value):
+        sent.append(name)
+        session.sliders[name].value = value
+        return 0.0
+
+    session._set = set_slider
+    session._arrived = lambda name, value, pushes: True
+
+    async def moves():
+        for _ in range(5):
+            await session.move(only_drags=True)
+    asyncio.run(moves())
+    assert "drags" in lc.PROFILES
+    assert sent == ["theta0"] * (5 * lc.DRAG_STEPS)
+    assert len(session.drag_latencies) == 5 and session.latencies == []

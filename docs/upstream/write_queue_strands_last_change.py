@@ -10,7 +10,7 @@ that runs after the flag was cleared, finds no flag, and returns: the change sta
 until the next change starts another task. Expected: every queued change written.
 
 Seen in this project's dashboard under a class's load (30 sessions, each dragging θ₀ over
-four positions): the final position of ~1 drag in 400 stayed on the server for 30 s, the
+four positions): the final position of ~1 drag in 500 stayed on the server for 30 s, the
 page showing the previous one; a trace found each lost message queued and its task
 returned without writing.
 
