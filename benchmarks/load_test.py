@@ -69,8 +69,8 @@ left <= 1.1 x the baseline) are reported as met or not.
 **Memory checks.** (1) After cleanup the total RSS is within ``max(150 MB, 25 %)`` of
 the baseline (the target, 1.1 x, is reported beside it). (2) The second round adds at
 most ``max(20 MB, 25 %)`` of what the first round's sessions took at its peak. CPython
-keeps the memory of destroyed sessions in its allocator for reuse instead of returning it to the system (measured: a session's
-document is freed -- counted in the server with ``gc`` -- yet the RSS stays near its
+keeps the memory of destroyed sessions in its allocator for reuse instead of returning it
+to the system (measured: a session's document is freed -- counted in the server with ``gc`` -- yet the RSS stays near its
 peak: its small-object arenas are freed only when wholly empty). Once the last session
 ended, the server cuts its shared results down to ``IDLE_CACHE_BYTES`` and replaces its
 idle worker processes by fresh ones (``app.pages.release_memory``), so what stays is the
