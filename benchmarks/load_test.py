@@ -66,17 +66,18 @@ each discarded session and counts the open ones). The classroom targets of issue
 (slider -> new data p95 <= 500 ms, page open p95 <= 5 s, 0 errors, memory after the class
 left <= 1.1 x the baseline) are reported as met or not.
 
-**Memory checks.** (1) After cleanup the total RSS is within ``max(150 MB, 25 %)`` of
-the baseline (the target, 1.1 x, is reported beside it). (2) The second round adds at
-most ``max(20 MB, 25 %)`` of what the first round's sessions took at its peak. CPython
-keeps the memory of destroyed sessions in its allocator for reuse instead of returning it
-to the system (measured: a session's document is freed -- counted in the server with ``gc`` -- yet the RSS stays near its
-peak: its small-object arenas are freed only when wholly empty). Once the last session
-ended, the server cuts its shared results down to ``IDLE_CACHE_BYTES`` and replaces its
-idle worker processes by fresh ones (``app.pages.release_memory``), so what stays is the
-server's own heap; "after" is read once the fresh workers have loaded, and (3) checks
-that the workers were replaced. So (1) bounds what stays, and (2) tells retention from a
-leak: leaked sessions would add about a round's worth again.
+**Memory checks.** (1) After cleanup the total RSS is within ``max(150 MB, 25 %)`` of the
+baseline (the target, 1.1 x, is reported beside it). (2) The second round adds at most
+``max(20 MB, 25 %)`` of what the first round's sessions took at its peak. CPython keeps the
+memory of destroyed sessions in its allocator for reuse instead of returning it to the
+system (measured: a session's document is freed -- counted in the server with ``gc`` -- yet
+the RSS stays near its peak: its small-object arenas are freed only when wholly empty).
+Once the last session ended, the server cuts its shared results down to
+``IDLE_CACHE_BYTES`` and replaces its idle worker processes by fresh ones
+(``app.pages.release_memory``), so what stays is the server's own heap; "after" is read
+once the fresh workers have loaded, and (3) checks that the workers were replaced. So (1)
+bounds what stays, and (2) tells retention from a leak: leaked sessions would add about a
+round's worth again.
 
 Writes DIR/load.md and DIR/load.json (default DIR: bench-out); exits 1 when a check
 fails (errors, sessions without updates, memory not back, workers not replaced, sessions
