@@ -5,20 +5,21 @@
   compile runs in the background while pages are served and say so.
 * The dashboard is built once (``app.opening.rehearse``) when the solver is ready, so the
   first visitor's page holds the event loop no longer than the next one's.
-* The serving edge's guards (``app.edge``: security headers, the busy page before any
-  session, the guard on Panel's address reader) are installed on the tested stack; on
-  another one the server says so in one line.
+* A client without room in the page gate (``app.pages``) is sent to the busy page before
+  any session is made (Panel's ``authorize_callback``: ``app.opening.admit_or_busy``).
+* The serving edge's guards (``app.edge``: security headers, queued writes) are installed
+  on the tested stack; on another one the server says so in one line.
 * Bokeh's expensive error diagnostics are off in the server (``quiet_diagnostics``).
 """
 import logging
 import os
 
+import panel as pn
 from bokeh.settings import settings
 
 from app.edge import install
 from app.jobs import start_warm_up
-from app.opening import BUSY_HTML, rehearse
-from app.pages import page_gate
+from app.opening import admit_or_busy, rehearse
 
 
 log = logging.getLogger(__name__)
@@ -48,7 +49,8 @@ def quiet_diagnostics(environ=os.environ) -> bool:
 def on_server_loaded(server_context):
     if quiet_diagnostics():
         log.info("Bokeh's error diagnostics off (set %s=true to keep them)", DIAGNOSTICS_ENV)
-    install(BUSY_HTML, lambda remote_ip: page_gate().has_room(remote_ip))
+    pn.config.authorize_callback = admit_or_busy
+    install()
     if start_warm_up():  # the solver compiles in the background: no results to show yet
         return
     try:

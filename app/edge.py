@@ -6,7 +6,9 @@ On another version of Panel, Bokeh or Tornado the server says so in one line at 
 guards below. ``tests/test_edge.py`` fails the day one of the internals they use changes.
 Each guard has a reproducer with plain Panel in ``docs/upstream/``. (Panel's reader of the
 page address, which raises on a 4301-digit value (``docs/upstream/parse_query_digits.py``),
-needs no guard: the page is served without Panel's ``Location``, ``app/main.py``.)
+needs no guard: the page is served without Panel's ``Location``, ``app/main.py``. The busy
+page a client without room gets before any session is made needs none either: Panel's
+``authorize_callback`` sends it there, ``app.opening.admit_or_busy``.)
 
 The touches, and what each buys:
 
@@ -16,12 +18,7 @@ The touches, and what each buys:
    the dashboard, browsers take each file as the type the server declares. There it also
    drops a ``bokeh-session-id`` Bokeh would read as empty (Bokeh answers 500,
    ``docs/upstream/empty_session_id.py``) or cannot decode (Tornado answers 400).
-2. **The busy page before any session** (``answer_busy_before_building``): a client whose
-   unopened pages fill its place in the page gate (``app.pages``) gets ``BUSY_HTML``
-   (~1 ms) instead of a Bokeh session and a Panel page (~25 ms of the event loop each), so
-   a burst of page requests leaves the liveness endpoint fast. Panel's page handler has
-   no hook before its session is made; its ``get`` is wrapped.
-3. **Panel's text views drawn late** (``MARKUP_GUARD_JS``, in the page): a change of
+2. **Panel's text views drawn late** (``MARKUP_GUARD_JS``, in the page): a change of
    ``visible`` reaching a markup view built but not yet drawn throws in Panel's view
    (``docs/upstream/markup_visible_before_drawn.py``); likewise a change of ``disabled``
    reaching a control (a FileDownload on a tab not drawn yet) threw "Cannot read
@@ -34,7 +31,7 @@ The touches, and what each buys:
    ``<style>`` elements with their own text, and the styles were recalculated for each
    (``docs/upstream/bokehjs_style_rewrite.py``). The browser's work per key press, with
    the fix and without: ``benchmarks/bench_style_fix.py``.
-4. **Changes queued while the websocket is busy** (``keep_queued_writes``): Panel queues a
+3. **Changes queued while the websocket is busy** (``keep_queued_writes``): Panel queues a
    change it cannot write at once and a task writes the queue; a change queued as the
    previous write ends waited for the page's next change, because the previous write's
    task had cleared the queue's flag and the new task, finding it cleared, returned
@@ -87,22 +84,19 @@ def untested_note() -> str | None:
         return None
     return (f"panel/bokeh/tornado {found['panel']}/{found['bokeh']}/{found['tornado']} are not "
             f"the tested {TESTED['panel']}/{TESTED['bokeh']}/{TESTED['tornado']}: the server "
-            "runs without its guards (security headers, busy page, text-view guard, queued "
-            "writes); see app/edge.py")
+            "runs without its guards (security headers, text-view guard, queued writes); "
+            "see app/edge.py")
 
 
-def install(busy_html: str, has_room) -> bool:
-    """Install the server guards 1, 2 and 4 (once per process) on the tested stack; elsewhere
-    log ``untested_note()`` once. Returns whether they are installed.
-
-    ``busy_html``: the page a client without room gets; ``has_room(remote_ip)``: whether
-    a client may have a page built (the page gate, ``app.pages``)."""
+def install() -> bool:
+    """Install the server guards 1 and 3 (once per process) on the tested stack; elsewhere
+    log ``untested_note()`` once. Returns whether they are installed. (Guard 2 is page
+    code: ``guard_markup_views``.)"""
     note = untested_note()
     if note is not None:
         log.warning(note)
         return False
     add_security_headers()
-    answer_busy_before_building(busy_html, has_room)
     keep_queued_writes()
     return True
 
@@ -144,28 +138,7 @@ def drop_unreadable_session_id(request) -> None:
             del args["bokeh-session-id"]
 
 
-# ---------------------------------------------------------------------- 2. busy page
-def answer_busy_before_building(busy_html: str, has_room) -> None:
-    from panel.io import server
-
-    handler = server.DocHandler  # Panel's page handler: its ``get`` builds the session
-    if getattr(handler.get, "_busy_first", False):
-        return
-    build = handler.get
-
-    async def get(self, *args, **kwargs):
-        if not has_room(self.request.remote_ip):
-            self.set_header("Cache-Control", "no-store")
-            self.set_header("Content-Type", "text/html; charset=UTF-8")
-            self.write(busy_html)
-            return None
-        return await build(self, *args, **kwargs)
-
-    get._busy_first = True
-    handler.get = get
-
-
-# ---------------------------------------------------------------------- 3. text views
+# ---------------------------------------------------------------------- 2. text views
 #: Panel's text views (``PanelMarkupView``: HTML, Markdown, alerts) make their
 #: ``container`` when first drawn, and their handler of ``visible`` uses it at once: a page
 #: sent in a patch has views BokehJS builds at once but draws over later turns, so a change
@@ -264,7 +237,7 @@ def guard_markup_views(doc) -> None:
     doc.js_on_event("document_ready", CustomJS(code=page_js()))
 
 
-# ---------------------------------------------------------------------- 4. queued writes
+# ---------------------------------------------------------------------- 3. queued writes
 def keep_queued_writes() -> None:
     """Panel writes a page's change it could not write at once from a queue
     (``schedule_write_events``), by a task (``_dispatch_msgs``) that returns without writing

@@ -18,20 +18,26 @@ seconds. So:
   no browser gets: a process's first page cost twice what the next ones did (one-time
   work of Panel and Bokeh), and that first page was a visitor's or the health check's;
 * a client whose unopened pages fill its place in the page gate (``app.pages.PageGate``)
-  gets the **busy page**, answered before any Bokeh session is made (``BUSY_HTML``, ~1 ms:
-  ``app.edge.answer_busy_before_building``), or as a Panel page (``busy_page``) when
-  the app runs without its server hooks (``panel serve app/main.py``).
+  is sent to the **busy page** before any Bokeh session is made: Panel's
+  ``authorize_callback`` (``admit_or_busy``, set by the server hooks) answers its request
+  with a redirect to a static file (``app/static/busy.html``, ``BUSY_HTML``; ~1 ms), which
+  comes back to the page's address a few seconds later. Without the server hooks
+  (``panel serve app/main.py``) the busy page is a Panel page (``busy_page``).
 """
 from __future__ import annotations
 
 import html
 import logging
 import time
+from pathlib import Path
+from urllib.parse import urlencode
 
 import panel as pn
 from bokeh.models import CustomJS
 
 from .edge import guard_markup_views
+from .pages import page_gate
+from .slot import client_address
 from .trace import mark
 from .views.widgets import caption, look
 
@@ -42,9 +48,18 @@ BUSY_TITLE = f"{TITLE} (busy)"
 BUSY_HEADING = "The server is busy"
 BUSY_TEXT = ("It is still building several pages for your address that have not been "
              "opened yet. This page reloads itself in a few seconds.")
-#: The busy page reloads itself after a random 3-6 s (spread, so a class that was turned
-#: away at once does not come back at once).
-AUTO_RELOAD_JS = "setTimeout(() => window.location.reload(), 3000 + 3000 * Math.random());"
+#: The busy page goes back to the page's address: the one it was sent from (``?next=``,
+#: a path of this server, ``admit_or_busy``), else its own (a reload). (``window.URL``: in
+#: the button's ``onclick`` a bare ``URL`` is ``document.URL``.)
+BACK_JS = ("const n = new URLSearchParams(location.search).get('next');"
+           " const u = n ? new window.URL(n, location.href) : null;"
+           " u && u.origin === location.origin ? location.replace(u.href) : location.reload();")
+#: ... after a random 3-6 s (spread, so a class that was turned away at once does not come
+#: back at once).
+AUTO_RELOAD_JS = f"setTimeout(() => {{ {BACK_JS} }}, 3000 + 3000 * Math.random());"
+#: The busy page's file, served by Bokeh beside the app (a directory app's ``static``
+#: folder): ``/app/static/busy.html``. Its text is ``BUSY_HTML`` (``tests/test_opening.py``).
+BUSY_FILE = Path(__file__).with_name("static") / "busy.html"
 OPENING_TEXT = "Opening the explorer&hellip;"
 FAILED_TEXT = ("**The page could not be built.** The server's log says why; reloading the "
                "page tries again.")
@@ -56,15 +71,35 @@ BUSY_HTML = f"""<!DOCTYPE html>
 <style>body {{font-family: system-ui, sans-serif; margin: 2em; max-width: 40em; color: #222}}
 button {{font-size: 1em; padding: 0.4em 1em; cursor: pointer}}</style></head>
 <body class="busy-page"><h3>{html.escape(BUSY_HEADING)}</h3><p>{html.escape(BUSY_TEXT)}</p>
-<button type="button" onclick="window.location.reload()">Reload now</button>
+<button type="button" onclick="{html.escape(BACK_JS)}">Reload now</button>
 <script>{AUTO_RELOAD_JS}</script></body></html>
 """
 
 
+def admit_or_busy(user_info, path: str):
+    """Panel's ``authorize_callback`` (``pn.config.authorize_callback``, set by the server
+    hooks, ``app.app_hooks``), run for each page request before its session is made:
+    True (Panel builds the page) while the client has room in the page gate
+    (``app.pages.page_gate``), else the address of the busy page (Panel redirects there),
+    which comes back to the requested address (path and query). ``path``: the page's path
+    (``/app``, with the server's ``--prefix``)."""
+    if page_gate().has_room(client_address()):
+        return True
+    doc = pn.state.curdoc  # Panel's stand-in document for the request
+    request = doc.session_context.request if doc is not None and doc.session_context else None
+    return busy_address(path, getattr(request, "uri", None) or path)
+
+
+def busy_address(path: str, uri: str) -> str:
+    """The busy page beside the app at ``path``, going back to ``uri``."""
+    return f"{path.rstrip('/')}/static/{BUSY_FILE.name}?{urlencode({'next': uri})}"
+
+
 def busy_page(doc=None):
-    """The busy page as a Panel page (``BUSY_HTML`` is the one answered by the server)."""
+    """The busy page as a Panel page, for the app served without its server hooks
+    (``BUSY_HTML`` is the one the server sends)."""
     reload = pn.widgets.Button(**caption("Reload now"), **look("primary"), width=120)
-    reload.js_on_click(code="window.location.reload()")
+    reload.js_on_click(code=BACK_JS)
     if doc is not None:
         doc.js_on_event("document_ready", CustomJS(code=AUTO_RELOAD_JS))
     return pn.Column(pn.pane.Markdown(f"### {BUSY_HEADING}\n\n{BUSY_TEXT}"), reload,

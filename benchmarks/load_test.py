@@ -46,7 +46,7 @@ page) is reported separately.
 * ``drags`` (``--profiles class,drags``): the same closed loop with every move a theta0
   drag, the most updates whose last position must reach the page. A last position never
   shown within ``UPDATE_TIMEOUT_S`` is an error: Panel once left a change queued until the
-  page's next one (``app/edge.py``, guard 4), ~1 drag in 500 under a class's load.
+  page's next one (``app/edge.py``, guard 3), ~1 drag in 500 under a class's load.
 
 (Every session first sends Bokeh's ``document_ready`` event, as BokehJS does once the page
 is drawn: Panel holds a session's model updates until then.) ``--profile`` records the

@@ -50,20 +50,23 @@ def test_a_client_whose_pages_are_opened_earns_a_larger_bound():
     assert gate.allowance("nat") == 2 and gate._opens == {}
 
 
-def test_the_busy_page_reloads_itself():
+def test_the_busy_page_goes_back():
+    import json
     import re
+    from html import escape
 
     from bokeh.document import Document
     from bokeh.embed import file_html
     from bokeh.resources import CDN
 
-    from app.opening import busy_page  # the page script's own, without the server hooks
+    from app.opening import BACK_JS, busy_page  # the page script's own, without server hooks
 
     doc = Document()
     doc.add_root(busy_page(doc).get_root(doc))
     html = file_html(doc, CDN)
-    assert re.search(r'"document_ready",\[\{[^]]*"CustomJS"[^]]*window\.location\.reload\(\)',
-                     html), "the busy page does not reload itself when the browser has it"
+    back = re.escape(escape(json.dumps(BACK_JS)[1:-1], quote=False))  # as Bokeh embeds it
+    assert re.search(r'"document_ready",\[\{[^]]*"CustomJS"[^]]*' + back, html), \
+        "the busy page does not go back when the browser has it"
 
 
 def test_the_liveness_probe_builds_no_dashboard(monkeypatch):

@@ -29,10 +29,10 @@ def test_on_another_stack_the_server_says_so_in_one_line_and_installs_nothing(
 
     monkeypatch.setattr(edge, "versions", lambda: dict(edge.TESTED, panel="9.9.9"))
     installed = []
-    for name in ("add_security_headers", "answer_busy_before_building", "keep_queued_writes"):
+    for name in ("add_security_headers", "keep_queued_writes"):
         monkeypatch.setattr(edge, name, lambda *args, name=name: installed.append(name))
     with caplog.at_level(logging.WARNING, logger="app.edge"):
-        assert edge.install("busy", lambda remote_ip: True) is False
+        assert edge.install() is False
     assert installed == []
     [record] = caplog.records
     assert "9.9.9" in record.message and "1.9.4" in record.message
@@ -66,16 +66,8 @@ def test_canary_tornado_reads_control_characters_as_the_guard_does():
     assert RequestHandler._remove_control_chars_regex.pattern == edge.CONTROL_CHARS.pattern
 
 
-def test_canary_panel_serves_its_pages_with_the_wrapped_handler():
-    """Guard 2 wraps the ``get`` of the handler Panel serves an app's page with."""
-    from panel.io.server import DocHandler, per_app_patterns
-
-    assert (r"/?", DocHandler) in [tuple(p[:2]) for p in per_app_patterns]
-    assert inspect.iscoroutinefunction(inspect.unwrap(DocHandler.get))
-
-
 def test_canary_panels_text_views_make_their_container_when_drawn():
-    """Guard 3 defines ``container`` on the prototype of Panel's markup view; it works
+    """Guard 2 defines ``container`` on the prototype of Panel's markup view; it works
     while Panel's bundle assigns it in ``render`` and declares no class field (which
     would shadow the prototype's property)."""
     import panel
@@ -111,13 +103,13 @@ def _changes_written(dispatch) -> tuple[int, int]:
 
 
 def test_canary_panel_leaves_a_change_queued_as_the_previous_write_ends():
-    """Guard 4's bug: the day Panel writes the second change, delete the guard."""
+    """Guard 3's bug: the day Panel writes the second change, delete the guard."""
     from panel.io import document
 
     assert _changes_written(inspect.unwrap(document._dispatch_msgs)) == (1, 1)
 
 
-def test_with_guard_4_every_queued_change_is_written(monkeypatch):
+def test_with_guard_3_every_queued_change_is_written(monkeypatch):
     from panel.io import document
 
     monkeypatch.setattr(document, "_dispatch_msgs", inspect.unwrap(document._dispatch_msgs))

@@ -3,13 +3,16 @@ client without room in the page gate gets the busy page before any session is ma
 visitor sees of a served page (one message per change, the dashboard arriving once
 opened): tests/test_serving.py."""
 import asyncio
+import html
 import logging
+import types
+import urllib.parse
 
 import panel as pn
 import pytest
 
-from app.opening import (AUTO_RELOAD_JS, BUSY_HTML, BUSY_TITLE, _build, build_when_opened,
-                         loading_shell)
+from app.opening import (AUTO_RELOAD_JS, BACK_JS, BUSY_FILE, BUSY_HTML, BUSY_TITLE, _build,
+                         admit_or_busy, busy_address, build_when_opened, loading_shell)
 from app.pages import PageGate
 
 
@@ -31,66 +34,69 @@ def test_without_a_server_the_page_is_built_at_once():
     assert shell.objects == [page]
 
 
-def test_the_busy_page_reloads_itself_and_says_it_is_busy():
+def test_the_busy_page_goes_back_and_says_it_is_busy():
     assert f"<title>{BUSY_TITLE}</title>" in BUSY_HTML
-    assert f"<script>{AUTO_RELOAD_JS}</script>" in BUSY_HTML
-    assert 'onclick="window.location.reload()"' in BUSY_HTML
+    assert f"<script>{AUTO_RELOAD_JS}</script>" in BUSY_HTML and BACK_JS in AUTO_RELOAD_JS
+    assert f'onclick="{html.escape(BACK_JS)}"' in BUSY_HTML
     assert "token" not in BUSY_HTML  # no Bokeh session behind it
 
 
+def test_the_served_busy_page_is_busy_html():
+    """The file the server sends is ``BUSY_HTML``; after a change of the text, write it:
+    ``python -c "from app.opening import BUSY_FILE, BUSY_HTML; BUSY_FILE.write_text(BUSY_HTML)"``."""
+    assert BUSY_FILE.read_text(encoding="utf-8") == BUSY_HTML
+
+
+def test_the_busy_address_is_beside_the_app_and_carries_the_page_address():
+    address = busy_address("/friction/app", "/friction/app?k_r=0.5&theta0=40")
+    path, query = address.split("?", 1)
+    assert path == "/friction/app/static/busy.html"  # Bokeh serves app/static there
+    assert urllib.parse.parse_qs(query) == {"next": ["/friction/app?k_r=0.5&theta0=40"]}
+    assert busy_address("/app/", "/app/").startswith("/app/static/busy.html?")
+
+
 class _Request:
-    """What Panel and the page read of a page request."""
-    remote_ip, arguments, cookies, headers = "10.0.0.9", {}, {}, {}
-
-
-class _Handler:
-    def __init__(self):
-        self.request, self.headers, self.body = _Request(), {}, ""
-
-    def set_header(self, name, value):
-        self.headers[name] = value
-
-    def write(self, text):
-        self.body += text
+    """What the page gate and the busy address read of a page request."""
+    remote_ip, uri = "10.0.0.9", "/app?F_N=2"
 
 
 @pytest.fixture
-def wrapped_page_handler(monkeypatch):
-    """Panel's page handler with a stand-in ``get`` (records the pages it would build),
-    wrapped by the server hook; the page gate a fresh one."""
-    from panel.io.server import DocHandler
-
+def gate(monkeypatch):
     import app.pages
-    from app.edge import answer_busy_before_building
-    from app.opening import BUSY_HTML
 
-    built = []
-
-    async def get(self, *args, **kwargs):
-        built.append(self)
-    monkeypatch.setattr(DocHandler, "get", get)
     gate = PageGate(max_unopened=1, window_s=60)
     monkeypatch.setattr(app.pages, "_GATE", gate)
-    answer_busy_before_building(BUSY_HTML, lambda ip: app.pages.page_gate().has_room(ip))
-    return DocHandler.get, gate, built
+    return gate
 
 
-def test_a_client_without_room_gets_the_busy_page_before_any_session(wrapped_page_handler):
-    get, gate, built = wrapped_page_handler
-    first = _Handler()
-    asyncio.run(get(first))
-    assert built == [first] and first.body == ""  # room: Panel builds the page
+def _authorize(request=_Request):
+    """Run ``admit_or_busy`` as Panel's page handler does: in the request's stand-in
+    document, with the page's path."""
+    from panel.io.state import set_curdoc
+
+    doc = types.SimpleNamespace(session_context=types.SimpleNamespace(request=request))
+    with set_curdoc(doc):
+        return admit_or_busy({}, "/app")
+
+
+def test_a_client_without_room_is_sent_to_the_busy_page_before_any_session(gate):
+    assert _authorize() is True  # room: Panel builds the page ...
     assert gate.admit(_Request.remote_ip, "page 1")  # ... and the page script admits it
-    second = _Handler()
-    asyncio.run(get(second))
-    assert built == [first]  # no session, no page script
-    assert second.body == BUSY_HTML
-    assert second.headers["Content-Type"].startswith("text/html")
-    assert second.headers["Cache-Control"] == "no-store"
+    assert _authorize() == busy_address("/app", "/app?F_N=2")  # no room: Panel redirects
+    other = types.SimpleNamespace(remote_ip="10.0.0.10", uri="/app")
+    assert _authorize(other) is True  # another client has its own room
     gate.opened(_Request.remote_ip, "page 1")
-    third = _Handler()
-    asyncio.run(get(third))
-    assert built == [first, third]
+    assert _authorize() is True
+
+
+def test_the_server_hooks_set_the_busy_gate_as_panels_authorize_callback(monkeypatch):
+    import app.app_hooks as hooks
+
+    monkeypatch.setattr(hooks, "start_warm_up", lambda: True)  # no rehearsal here
+    monkeypatch.setattr(hooks, "install", lambda: True)
+    monkeypatch.setattr(pn.config, "authorize_callback", None)
+    hooks.on_server_loaded(None)
+    assert pn.config.authorize_callback is admit_or_busy
 
 
 def test_has_room_agrees_with_admit():

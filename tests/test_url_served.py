@@ -51,14 +51,26 @@ def _get(url: str) -> tuple[int, str]:
     """GET ``url`` from a loopback address of its own (127.0.1.N): each request is a new
     client to the server, so none is turned away with the busy page of a client whose
     earlier pages were never opened (``app.pages.PageGate``), and each runs the page."""
+    status, _headers, body = _fetch(url, _new_source())
+    return status, body
+
+
+def _new_source() -> str:
     n = next(_SOURCES)
+    return f"127.0.{1 + n // 250}.{1 + n % 250}"
+
+
+def _fetch(url: str, source: str) -> tuple[int, dict, str]:
+    """GET ``url`` from the loopback address ``source``, redirects not followed: (status,
+    headers in lower case, body)."""
     parts = urllib.parse.urlsplit(url)
     connection = http.client.HTTPConnection(parts.hostname, parts.port, timeout=60,
-                                            source_address=(f"127.0.{1 + n // 250}.{1 + n % 250}", 0))
+                                            source_address=(source, 0))
     try:
         connection.request("GET", parts.path + (f"?{parts.query}" if parts.query else ""))
         response = connection.getresponse()
-        return response.status, response.read().decode("utf-8", "replace")
+        headers = {k.lower(): v for k, v in response.getheaders()}
+        return response.status, headers, response.read().decode("utf-8", "replace")
     finally:
         connection.close()
 
@@ -169,7 +181,8 @@ SECURITY_HEADERS = {"x-frame-options": "SAMEORIGIN", "x-content-type-options": "
 
 @pytest.mark.slow
 @pytest.mark.parametrize("path", ["/app", "/app?k_r=0.5", "/liveness?endpoint=/app",
-                                  "/static/js/bokeh.min.js", "/no-such-page"])
+                                  "/static/js/bokeh.min.js", "/app/static/busy.html",
+                                  "/no-such-page"])
 def test_every_response_forbids_framing_and_sniffing(served, path):
     base, _log = served
     try:
@@ -197,3 +210,26 @@ def test_over_long_number_in_the_address_breaks_nothing(served):
     time.sleep(0.5)
     text = log.read_text(encoding="utf-8", errors="replace")
     assert _tracebacks(log) == [] and "UnknownReferenceError" not in text
+
+
+@pytest.mark.slow
+def test_a_client_whose_pages_are_not_opened_is_sent_to_the_busy_page(served):
+    """Past ``MAX_UNOPENED_PAGES`` pages nobody opened, a client's next page request is
+    redirected to the busy page (no session made), which names the page to go back to."""
+    from app.opening import BUSY_HTML, busy_address
+    from app.pages import MAX_UNOPENED_PAGES
+
+    base, _log = served
+    source, query = _new_source(), "/app?F_N=2&theta0_deg=40"
+    for _ in range(MAX_UNOPENED_PAGES):
+        status, _headers, body = _fetch(base + query, source)
+        assert status == 200 and '"token"' in body  # a page with its session
+    status, headers, body = _fetch(base + query, source)
+    assert status == 302 and '"token"' not in body, (status, body[:300])
+    assert headers["location"] == busy_address("/app", query)
+    assert headers["cache-control"] == "no-store"
+    status, headers, body = _fetch(base + headers["location"], source)
+    assert status == 200 and body == BUSY_HTML
+    assert headers["content-type"].startswith("text/html")
+    status, _headers, body = _fetch(base + query, _new_source())
+    assert status == 200 and '"token"' in body  # another client still gets its page
