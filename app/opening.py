@@ -69,9 +69,10 @@ BUSY_HTML = f"""<!DOCTYPE html>
 <meta name="viewport" content="width=device-width, initial-scale=1">
 <title>{html.escape(BUSY_TITLE)}</title>
 <style>body {{font-family: system-ui, sans-serif; margin: 2em; max-width: 40em; color: #222}}
-button {{font-size: 1em; padding: 0.4em 1em; cursor: pointer}}</style></head>
-<body class="busy-page"><h3>{html.escape(BUSY_HEADING)}</h3><p>{html.escape(BUSY_TEXT)}</p>
-<button type="button" onclick="{html.escape(BACK_JS)}">Reload now</button>
+h1 {{font-size: 1.4em}} button {{font-size: 1em; padding: 0.4em 1em; cursor: pointer}}</style>
+</head><body class="busy-page"><main><h1>{html.escape(BUSY_HEADING)}</h1>
+<p>{html.escape(BUSY_TEXT)}</p>
+<button type="button" onclick="{html.escape(BACK_JS)}">Reload now</button></main>
 <script>{AUTO_RELOAD_JS}</script></body></html>
 """
 
