@@ -75,9 +75,11 @@ def _tree_rss_proc(pid: int) -> dict:
 
 
 def worker_pids(pid: int) -> set[int]:
-    """The pids of the server's worker processes (``multiprocessing`` spawned children,
-    not its resource tracker)."""
-    found, order = set(), [pid]
+    """The pids of the server's worker processes (``multiprocessing``'s: spawned, or forked
+    by its fork server, which shares their command line; not the fork server itself nor
+    the resource tracker)."""
+    found, order, commands = set(), [pid], {}
+    parent_of: dict[int, int] = {}
     children: dict[int, list[int]] = {}
     for entry in os.listdir("/proc"):
         if entry.isdigit():
@@ -86,13 +88,15 @@ def worker_pids(pid: int) -> set[int]:
             except (OSError, IndexError, ValueError):
                 continue
             children.setdefault(ppid, []).append(int(entry))
+            parent_of[int(entry)] = ppid
     for p in order:
         order.extend(children.get(p, []))
         try:
-            cmd = Path(f"/proc/{p}/cmdline").read_bytes()
+            commands[p] = cmd = Path(f"/proc/{p}/cmdline").read_bytes()
         except OSError:
             continue
-        if p != pid and b"spawn_main" in cmd:
+        forked = b"forkserver" in cmd and b"forkserver" in commands.get(parent_of.get(p), b"")
+        if p != pid and (b"spawn_main" in cmd or forked):
             found.add(p)
     return found
 

@@ -358,3 +358,19 @@ def test_diagnostics_benchmark_measures_both_settings(tmp_path):
     assert "diagnostics on" in out and "diagnostics off" in out
     from bokeh.settings import settings
     assert settings.perform_error_diagnostics() is True  # this process untouched
+
+
+@pytest.mark.slow
+def test_worker_start_benchmark_measures_both_ways(tmp_path):
+    """``bench_worker_start.py``: a lane's new workers answering, forked by the server's fork
+    server (its own first round apart) and spawned, each figure with its spread."""
+    out = _run("bench_worker_start.py", tmp_path)
+    found = json.loads((tmp_path / "worker_start.json").read_text())
+    assert set(found) == {"spawn", "server's (fork server)",
+                          "server's (fork server), first round (the fork server starts)"}
+    assert [len(found[k]["wall_s"]) for k in sorted(found)] == [1, 1, 2]
+    for name, r in found.items():
+        for key in ("wall_s", "cpu_s", "rss_mb", "pss_mb"):
+            assert all(v > 0 for v in r[key]), (name, key, r)
+        assert all(pss <= rss for pss, rss in zip(r["pss_mb"], r["rss_mb"])), (name, r)
+    assert "| spawn | 2 |" in out and "| server's (fork server) | 1 |" in out

@@ -43,7 +43,8 @@ def test_the_busy_page_goes_back_and_says_it_is_busy():
 
 def test_the_served_busy_page_is_busy_html():
     """The file the server sends is ``BUSY_HTML``; after a change of the text, write it:
-    ``python -c "from app.opening import BUSY_FILE, BUSY_HTML; BUSY_FILE.write_text(BUSY_HTML)"``."""
+    ``python -c "from app.opening import BUSY_FILE as F, BUSY_HTML; F.write_text(BUSY_HTML)"``.
+    """
     assert BUSY_FILE.read_text(encoding="utf-8") == BUSY_HTML
 
 
