@@ -52,7 +52,7 @@ def worker_context():
     """How a lane's worker processes start: forked from a process that imported the model
     once (``forkserver``, preloading ``WORKER_MODULE``), so a lane's new workers -- after a
     job ran past its budget, or the fresh ones after a class -- answer in ~0.2 s instead of
-    the ~1.3 s (and ~1.2 s of CPU each) a fresh interpreter takes to import numpy, scipy,
+    the ~1.1 s (and ~1.1 s of CPU each) a fresh interpreter takes to import numpy, scipy,
     numba and the model (``spawn``, the fallback where there is no forkserver). Never plain
     ``fork``: the server is multi-threaded."""
     if "forkserver" not in multiprocessing.get_all_start_methods():
