@@ -95,6 +95,7 @@ def test_the_server_hooks_set_the_busy_gate_as_panels_authorize_callback(monkeyp
 
     monkeypatch.setattr(hooks, "start_warm_up", lambda: True)  # no rehearsal here
     monkeypatch.setattr(hooks, "install", lambda: True)
+    monkeypatch.setattr(hooks, "quiet_diagnostics", lambda: False)  # Bokeh's global setting
     monkeypatch.setattr(pn.config, "authorize_callback", None)
     hooks.on_server_loaded(None)
     assert pn.config.authorize_callback is admit_or_busy
