@@ -9,8 +9,6 @@ import inspect
 import logging
 from pathlib import Path
 
-import pytest
-
 from app import edge
 
 ROOT = Path(__file__).resolve().parents[1]

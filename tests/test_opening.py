@@ -2,7 +2,6 @@
 client without room in the page gate gets the busy page before any session is made. What a
 visitor sees of a served page (one message per change, the dashboard arriving once
 opened): tests/test_serving.py."""
-import asyncio
 import html
 import logging
 import types
