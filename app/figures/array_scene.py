@@ -306,8 +306,10 @@ for (let i = 0; i < n; i++) {
 }
 now.change.emit();
 const t = series.data.t[f], lead = lead0 + t, lo = lead - L0;
-// Equal scales on any screen: where the whole travel does not fit, follow the slab.
-if (follow && top.inner_width > 0 && top.inner_height > 0) {
+// Equal scales on any screen: where the whole travel does not fit, follow the slab. Before
+// the top view's first layout its size is unset (reading it throws): follow from then on.
+const sized = !top.properties.inner_width.is_unset && !top.properties.inner_height.is_unset;
+if (follow && sized && top.inner_width > 0 && top.inner_height > 0) {
   const xr = top.x_range, yr = top.y_range;
   const want = (yr.end - yr.start) * top.inner_width / top.inner_height;
   const [a0, a1] = full_x;
