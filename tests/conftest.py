@@ -9,6 +9,9 @@ to them.
 from pathlib import Path
 
 import pytest
+# --cpu-report: each test's CPU, its processes' included (tests/cpu_report.py).
+from cpu_report import (pytest_addoption, pytest_runtest_protocol,  # noqa: F401
+                        pytest_sessionfinish, pytest_terminal_summary)
 
 from model.contact.params import REGIMES
 
