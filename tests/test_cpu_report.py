@@ -49,17 +49,18 @@ def _run(tmp_path: Path, *args: str) -> dict:
     report = tmp_path / "cpu.json"
     env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(TESTS), os.environ.get(
         "PYTHONPATH", "")])}
-    done = subprocess.run([sys.executable, "-m", "pytest", "-p", "cpu_report", "-p",
-                           "no:cacheprovider", "-q", "--cpu-report", str(report), *args,
-                           "test_sample.py", "test_second.py"], cwd=tmp_path, env=env, capture_output=True,
-                          text=True, timeout=300)
+    command = [sys.executable, "-m", "pytest", "-p", "cpu_report", "-p", "no:cacheprovider",
+               "-q", "--cpu-report", str(report), *args, "test_sample.py", "test_second.py"]
+    done = subprocess.run(command, cwd=tmp_path, env=env, capture_output=True, text=True,
+                          timeout=300)
     assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
     assert "costliest modules" in done.stdout
     assert not (tmp_path / "cpu.json.parts").exists()
     return json.loads(report.read_text(encoding="utf-8"))
 
 
-@pytest.mark.parametrize("workers", [["-n0"], ["-n", "2", "--dist", "loadfile"]], ids=["one process", "xdist"])
+@pytest.mark.parametrize("workers", [["-n0"], ["-n", "2", "--dist", "loadfile"]],
+                         ids=["one process", "xdist"])
 def test_each_test_is_charged_its_processes_cpu(tmp_path, workers):
     found = _run(tmp_path, *workers)
     cpu = {row["test"].split("::")[1]: row["cpu_s"] for row in found["by_test"]}
