@@ -11,14 +11,16 @@ With pytest-xdist each worker writes its tests to ``<report>.parts/<worker>.json
 controller merges them into the report (JSON: every test, every module summed, the
 total) and prints the modules that cost the most. Linux only (``/proc``, via psutil).
 
-What it misses: CPU used between tests (collection, a worker's start), and a descendant
-that outlives its parent and is adopted by another process (it leaves the tree).
+What it misses: CPU used between tests (collection, a worker's start), the last tenth of
+a second of a process that was not this process's child, and a descendant that outlives
+its parent and is adopted by another process (it leaves the tree).
 """
 from __future__ import annotations
 
 import json
 import os
 import resource
+import threading
 import time
 from pathlib import Path
 
@@ -35,27 +37,92 @@ def pytest_addoption(parser):
                           "(JSON; tests/cpu_report.py)")
 
 
-def tree_cpu_s(process=None) -> float:
-    """CPU seconds of this process, its reaped children and its live descendants (and
-    the children those reaped)."""
-    import psutil
+class Descendants:
+    """The CPU of this process's descendants, read every ``interval`` seconds by a thread
+    (``/proc``, via psutil): each process's own user + system time, last seen.
 
-    process = process or psutil.Process()
-    total = 0.0
-    for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN):
-        usage = resource.getrusage(who)
-        total += usage.ru_utime + usage.ru_stime
-    try:
-        descendants = process.children(recursive=True)
-    except psutil.Error:
-        descendants = []
-    for child in descendants:
+    Read this way, not from the processes' ``children_*`` times: a process that ignores
+    ``SIGCHLD`` (Chromium's zygote does) reaps its children without adding their CPU to its
+    own, so a page's renderer closed with its test would leave no trace. What a process
+    did in its last ``interval`` before it ended is missed, and a process that lived less
+    than that is never seen: ``charge`` adds the CPU of this process's reaped children
+    (``RUSAGE_CHILDREN``) beyond what was seen of them."""
+
+    def __init__(self, interval: float = 0.1):
+        import psutil
+
+        self.me, self.interval = psutil.Process(), interval
+        self.seen: dict[tuple, list] = {}  # (pid, start) -> [parent pid, CPU s, alive]
+        self.lock = threading.Lock()
+        threading.Thread(target=self._run, name="cpu-report", daemon=True).start()
+
+    def _run(self) -> None:
+        while True:
+            time.sleep(self.interval)
+            self.read()
+
+    def read(self) -> None:
+        import psutil
+
+        found = {}
         try:
-            t = child.cpu_times()
-            total += t.user + t.system + t.children_user + t.children_system
-        except psutil.Error:  # ended meanwhile: its parent now counts it
-            pass
-    return total
+            children = self.me.children(recursive=True)
+        except psutil.Error:
+            children = []
+        for child in children:
+            try:
+                with child.oneshot():
+                    t = child.cpu_times()
+                    found[child.pid, child.create_time()] = [child.ppid(), t.user + t.system]
+            except psutil.Error:
+                pass
+        with self.lock:
+            for entry in self.seen.values():
+                entry[2] = False
+            for key, (ppid, cpu) in found.items():
+                self.seen[key] = [ppid, cpu, True]
+
+    def snapshot(self) -> tuple[dict, float, float]:
+        """(CPU of each descendant seen, this process's CPU, its reaped children's CPU)."""
+        self.read()
+        with self.lock:
+            cpu = {key: entry[1] for key, entry in self.seen.items()}
+        return cpu, _rusage(resource.RUSAGE_SELF), _rusage(resource.RUSAGE_CHILDREN)
+
+    def charge(self, start: tuple[dict, float, float]) -> float:
+        """CPU seconds used since ``start`` (a ``snapshot``) by this process and its
+        descendants; the processes seen ended are forgotten."""
+        before, self_0, reaped_0 = start
+        after, self_1, reaped_1 = self.snapshot()
+        with self.lock:
+            ended = {key: entry for key, entry in self.seen.items() if not entry[2]}
+            for key in ended:
+                del self.seen[key]
+        used = self_1 - self_0 + sum(cpu - before.get(key, 0.0) for key, cpu in after.items())
+        # This process's children reaped meanwhile (with what they reaped) beyond their
+        # CPU seen: the end of their lives and the processes too short to be seen.
+        mine = self.me.pid
+        parents = {key[0]: entry[0] for key, entry in ended.items()}
+
+        def under_a_child(pid: int) -> bool:
+            for _ in range(64):
+                if parents.get(pid) == mine:
+                    return True
+                if pid not in parents:
+                    return False
+                pid = parents[pid]
+            return False
+
+        seen_of_reaped = sum(entry[1] for key, entry in ended.items() if under_a_child(key[0]))
+        return used + max(0.0, reaped_1 - reaped_0 - seen_of_reaped)
+
+
+def _rusage(who) -> float:
+    usage = resource.getrusage(who)
+    return usage.ru_utime + usage.ru_stime
+
+
+_DESCENDANTS: list = []  # one reader per process, started with the first test
 
 
 def _parts(path: Path) -> Path:
@@ -68,9 +135,13 @@ def pytest_runtest_protocol(item, nextitem):
     if not report:
         yield
         return
-    start_cpu, start = tree_cpu_s(), time.monotonic()
+    if not _DESCENDANTS:
+        _DESCENDANTS.append(Descendants())
+    descendants = _DESCENDANTS[0]
+    start_cpu, start = descendants.snapshot(), time.monotonic()
     yield
-    row = {"test": item.nodeid.split("@", 1)[0], "cpu_s": round(tree_cpu_s() - start_cpu, 3),
+    row = {"test": item.nodeid.split("@", 1)[0],
+           "cpu_s": round(descendants.charge(start_cpu), 3),
            "wall_s": round(time.monotonic() - start, 3)}
     worker = os.environ.get("PYTEST_XDIST_WORKER", "main")
     parts = _parts(Path(report))

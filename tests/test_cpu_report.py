@@ -35,6 +35,22 @@ SAMPLE = textwrap.dedent(f"""
 
     def test_d_sleeps():
         time.sleep(0.3)
+
+    # A child that ignores SIGCHLD, as Chromium's zygote does: the grandchild it starts is
+    # reaped without a trace in anyone's CPU times.
+    ZYGOTE = (
+        "import os, signal, subprocess, sys, time\\n"
+        "signal.signal(signal.SIGCHLD, signal.SIG_IGN)\\n"
+        "pid = subprocess.Popen([sys.executable, '-c', sys.argv[1]]).pid\\n"
+        "while True:\\n"
+        "    try:\\n"
+        "        os.kill(pid, 0)\\n"
+        "    except ProcessLookupError:\\n"
+        "        break\\n"
+        "    time.sleep(0.01)\\n")
+
+    def test_f_a_grandchild_reaped_without_a_trace():
+        subprocess.run([sys.executable, "-c", ZYGOTE, SPIN], check=True)
 """)
 #: A second module (with xdist, on the other worker: ``--dist loadfile``).
 SECOND = SAMPLE.split("left = []")[0] + textwrap.dedent("""
@@ -65,7 +81,8 @@ def test_each_test_is_charged_its_processes_cpu(tmp_path, workers):
     found = _run(tmp_path, *workers)
     cpu = {row["test"].split("::")[1]: row["cpu_s"] for row in found["by_test"]}
     assert sorted(cpu) == ["test_a_child_spins", "test_b_starts_a_child_that_outlives_it",
-                           "test_c_waits_for_it", "test_d_sleeps", "test_e_spins_elsewhere"]
+                           "test_c_waits_for_it", "test_d_sleeps", "test_e_spins_elsewhere",
+                           "test_f_a_grandchild_reaped_without_a_trace"]
     # the child's spin, and a Python start (~0.05 s here)
     assert SPIN_S <= cpu["test_a_child_spins"] < SPIN_S + 0.5
     # the second child is charged to the two tests it ran during, once
@@ -73,9 +90,11 @@ def test_each_test_is_charged_its_processes_cpu(tmp_path, workers):
     assert SPIN_S <= shared < SPIN_S + 0.5, cpu
     assert cpu["test_b_starts_a_child_that_outlives_it"] >= SPIN_S / 3, cpu
     assert 0 <= cpu["test_d_sleeps"] < 0.1
+    # seen while it ran: all but its last tenth of a second
+    assert SPIN_S - 0.15 <= cpu["test_f_a_grandchild_reaped_without_a_trace"] < SPIN_S + 0.5
     module = found["modules"]["test_sample.py"]
-    assert module["tests"] == 4
+    assert module["tests"] == 5
     assert module["cpu_s"] == pytest.approx(sum(cpu.values()) - cpu["test_e_spins_elsewhere"],
                                             abs=0.01)
     assert SPIN_S <= cpu["test_e_spins_elsewhere"] < SPIN_S + 0.5
-    assert found["tests"] == 5
+    assert found["tests"] == 6
