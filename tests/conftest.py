@@ -10,8 +10,9 @@ from pathlib import Path
 
 import pytest
 # --cpu-report: each test's CPU, its processes' included (tests/cpu_report.py).
-from cpu_report import (pytest_addoption, pytest_runtest_protocol,  # noqa: F401
-                        pytest_sessionfinish, pytest_terminal_summary)
+from cpu_report import (pytest_addoption, pytest_configure,  # noqa: F401
+                        pytest_runtest_protocol, pytest_sessionfinish,
+                        pytest_terminal_summary)
 
 from model.contact.params import REGIMES
 

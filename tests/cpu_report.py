@@ -37,6 +37,14 @@ def pytest_addoption(parser):
                           "(JSON; tests/cpu_report.py)")
 
 
+def pytest_configure(config):
+    """The controller starts a report afresh (parts left by a run that was stopped)."""
+    report = config.getoption("cpu_report")
+    if report and not hasattr(config, "workerinput"):
+        for stale in _parts(Path(report)).glob("*.jsonl"):
+            stale.unlink()
+
+
 class Descendants:
     """The CPU of this process's descendants, read every ``interval`` seconds by a thread
     (``/proc``, via psutil): each process's own user + system time, last seen.

@@ -63,6 +63,9 @@ def _run(tmp_path: Path, *args: str) -> dict:
     (tmp_path / "test_sample.py").write_text(SAMPLE, encoding="utf-8")
     (tmp_path / "test_second.py").write_text(SECOND, encoding="utf-8")
     report = tmp_path / "cpu.json"
+    stale = tmp_path / "cpu.json.parts"  # left by a run that was stopped
+    stale.mkdir()
+    (stale / "gw9.jsonl").write_text('{"test": "gone.py::test_old", "cpu_s": 9.0}\n')
     env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(TESTS), os.environ.get(
         "PYTHONPATH", "")])}
     command = [sys.executable, "-m", "pytest", "-p", "cpu_report", "-p", "no:cacheprovider",
