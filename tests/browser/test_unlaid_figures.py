@@ -37,12 +37,9 @@ def test_the_array_plays_before_its_top_view_is_laid_out(page, page_log):
       const now = doc.get_model_by_name("array_supports");
       const code = [...frame.js_property_callbacks["change:value"]]
         .find((cb) => cb.code.includes("inner_width"));
-      const args = code.args instanceof Map ? code.args : new Map(Object.entries(code.args));
-      const top = args.get("top");
+      const top = code.args.top;
       const unlaid = new top.constructor({x_range: top.x_range, y_range: top.y_range});
-      args.set("top", unlaid);
-      code.args = args instanceof Map && code.args instanceof Map ? args
-        : Object.fromEntries(args);
+      code.args = {...code.args, top: unlaid};
       const before = Array.from(now.data.mx);
       for (const f of [10, 20, 30]) {  // CustomJS runs its code asynchronously
         frame.value = f;
@@ -54,4 +51,3 @@ def test_the_array_plays_before_its_top_view_is_laid_out(page, page_log):
     assert moved["unlaid"], "the copy of the top view was laid out: the case is not tested"
     assert page_log.errors == [], page_log.errors
     assert moved["changed"], f"the frames did not move the supports: {moved}"
-    assert page_log.errors == [], page_log.errors
