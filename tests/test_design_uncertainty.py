@@ -144,6 +144,9 @@ def test_the_design_tab_shows_bounds_and_greys_out_stale_numbers(stiff_design):
     record = stiff_design.to_dict()
     results.design_array = record
     text = view.table.object
+    header = next(line for line in text.splitlines() if line.startswith("|"))
+    assert all(cell.strip() for cell in header.strip("|").split("|")), \
+        f"a column without a header, which a screen reader reads out nameless: {header}"
     assert "friction not known yet" in text and "not converged: between" in text
     assert "±" not in text  # no error bar that looks like one
     assert not view.banner.visible and "stale" not in view.table.css_classes

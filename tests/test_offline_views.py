@@ -120,6 +120,12 @@ def test_the_support_views_are_the_dashboards(contacts):
     assert "stretched to" in contacts[1][1][0]["scene_notes"]["text"][0]
 
 
+#: Radial axes of every kind: (values, parity) for ``polar.radial_axis``.
+POLAR_AXES = [([1.1], "even"), ([0.19], "even"), ([23.0], "even"), ([3e-5], "even"),
+              ([0.5], "even"), ([1e6], "even"), ([0.0031, -0.0007], "even"), ([145.0], "even"),
+              ([-0.14, 0.14], "odd"), ([-0.09, 0.09], "odd"), ([2.2e-7, -1e-7], "odd")]
+
+
 def test_the_polar_diagrams_are_the_dashboards():
     theta0 = CONSTANTS["polar_theta0"]
     t = np.asarray(theta0)
@@ -141,6 +147,10 @@ def test_the_polar_diagrams_are_the_dashboards():
         want = polar.radial_axis(values, parity)
         assert got_axis[:2] == pytest.approx(list(want[:2]))
         assert got_axis[2] == pytest.approx(list(want[2]))
+    # Which rings are labelled, over axes of every kind (tests/test_polar_figure.py).
+    axes = [polar.radial_axis(values, parity) for values, parity in POLAR_AXES]
+    got = js([("V", "labelledRings", [[a[0], a[1], list(a[2])]]) for a in axes])
+    assert got == [polar.labelled_rings(a) for a in axes]
 
 
 def test_the_headline_is_the_dashboards_sentence():

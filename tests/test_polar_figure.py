@@ -47,3 +47,93 @@ def test_the_odd_diagram_has_a_legend_for_each_sign():
               for item in legend.items]
     assert any("F_T,y > 0" in s and "outside" in s for s in labels), labels
     assert any("F_T,y < 0" in s and "inside" in s for s in labels), labels
+
+
+def _dejavu_width(text: str, px: float) -> float:
+    """The drawn width (px) of ``text`` in DejaVu Sans, the font matplotlib ships."""
+    from matplotlib import font_manager
+    from PIL import ImageFont
+    path = font_manager.findfont(font_manager.FontProperties(family="DejaVu Sans"))
+    return ImageFont.truetype(path, 100).getlength(text) * px / 100
+
+
+def _boxes(axis, indices, frame_px, font_px):
+    """Text boxes (px, centred, no gap) of the ring labels ``indices`` and the angle labels
+    of ``axis`` in a square frame of ``frame_px`` showing +-``polar.extent(axis)``."""
+    px = frame_px / (2 * polar.extent(axis))
+    R = axis[1] - axis[0]
+    c, s = (f(math.radians(polar.RING_LABEL_DEG)) for f in (math.cos, math.sin))
+
+    def box(x, y, text):
+        w = _dejavu_width(text, font_px)
+        return (x - w / 2, y - font_px / 2, x + w / 2, y + font_px / 2)
+    rings = [box((axis[2][i] - axis[0]) * px * c, (axis[2][i] - axis[0]) * px * s,
+                 f"{axis[2][i]:g}") for i in indices]
+    a = polar.ANGLE_LABEL_R * R * px
+    angles = [box(a * math.cos(math.radians(d)), a * math.sin(math.radians(d)), f"{d}°")
+              for d in polar.SPOKES_DEG]
+    return rings, angles
+
+
+def _clash(a, b) -> bool:
+    return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
+
+
+AXES = [(values, parity) for parity, cases in (
+    ("even", ([1.1], [0.97], [0.19], [23.0], [3e-5], [0.5], [1e6], [0.0031, -0.0007], [7.3],
+              [0.012], [0.33], [1.0], [145.0])),
+    ("odd", ([-0.14, 0.14], [-0.09, 0.09], [0.05], [2.2e-7, -1e-7], [0.7], [-31.0])))
+    for values in cases]
+
+
+def test_the_ring_labels_run_into_nothing_on_a_projector_in_the_smallest_frame():
+    """Drawn in DejaVu Sans (wider than the usual sans-serif fonts) at the projector's text
+    size, in the smallest frame a polar figure gets: no two ring labels touch, none touches
+    an angle label, every angle label lies in the frame; the zero ring of an odd quantity
+    and the rim of an even one are labelled, and every other ring at a fixed step."""
+    for values, parity in AXES:
+        axis = polar.radial_axis(values, parity)
+        chosen = polar.labelled_rings(axis)
+        rings, angles = _boxes(axis, chosen, polar.LABEL_FRAME_PX, polar.LABEL_FONT_PX)
+        where = f"{[f'{v:g}' for v in axis[2]]}: labelled {[axis[2][i] for i in chosen]}"
+        for j, b in enumerate(rings):
+            assert not any(_clash(b, o) for o in rings[:j] + angles), where
+        half = polar.LABEL_FRAME_PX / 2
+        assert all(-half <= b[0] and b[2] <= half for b in angles), where
+        odd = axis[0] < 0
+        assert axis[2].index(0.0) in chosen if odd else len(axis[2]) - 1 in chosen, where
+        steps = set(np.diff(chosen))
+        assert len(steps) <= 1, where
+        assert len(chosen) >= 2, f"{where}: a scale needs two labels"
+
+
+def test_the_ring_labels_are_as_many_as_fit():
+    """One ring more at the next smaller step would run into a label: the step is the
+    smallest that fits (as laid out, with the gap, in the layout's own widths)."""
+    for values, parity in AXES:
+        axis = polar.radial_axis(values, parity)
+        chosen = polar.labelled_rings(axis)
+        step = int(chosen[1] - chosen[0]) if len(chosen) > 1 else len(axis[2])
+        if step == 1:
+            continue
+        first = chosen[len(chosen) // 2] if axis[0] < 0 else chosen[-1]
+        denser = [i for i in range(len(axis[2])) if (first - i) % (step - 1) == 0]
+        px = polar.LABEL_FRAME_PX / (2 * polar.extent(axis))
+        c, s = (f(math.radians(polar.RING_LABEL_DEG)) for f in (math.cos, math.sin))
+        boxes = [polar._label_box((axis[2][i] - axis[0]) * px * c,
+                                  (axis[2][i] - axis[0]) * px * s, f"{axis[2][i]:g}")
+                 for i in denser]
+        a = polar.ANGLE_LABEL_R * (axis[1] - axis[0]) * px
+        boxes += [polar._label_box(a * math.cos(math.radians(d)), a * math.sin(math.radians(d)),
+                                   f"{d}°") for d in polar.SPOKES_DEG]
+        assert any(_clash(boxes[j], o) for j in range(len(denser)) for o in boxes[:j]
+                   + boxes[len(denser):]), f"{axis[2]}: step {step - 1} would fit"
+
+
+def test_every_polar_figure_drawn_is_at_least_the_labels_frame():
+    from app.figures.design import design_polar_figure
+
+    figures = [polar.polar_figure(k, width=325, height=340) for k in polar.QUANTITIES]
+    figures.append(design_polar_figure())
+    for fig in figures:
+        assert fig.frame_width >= polar.LABEL_FRAME_PX, (fig.name, fig.frame_width)

@@ -157,6 +157,11 @@ def test_the_folded_numbers_are_written_when_the_card_is_opened(pool):
     state.k_r = 0.7
     assert view.fixed_pane.object == fixed_markdown(results.support)
     assert results.support.params.k_r == 0.7
+    # Every column of every table is named: a screen reader reads a header cell out.
+    for table in (view.fixed_pane.object, view.uniform_pane.object,
+                  uniform_markdown(None, state.average)):
+        header = table.splitlines()[0]
+        assert all(cell.strip() for cell in header.strip("|").split("|")), header
 
 
 def test_the_headline_never_quotes_a_result_of_the_controls_before(pool):

@@ -14,7 +14,8 @@ import math
 import numpy as np
 from bokeh.models import DataRange1d
 
-from .common import BLACK, BLUE, GREY, ORANGE, VERMILION, legend_above, new_figure, source
+from .common import (BLACK, BLUE, GREY, MIN_TEXT_PX, ORANGE, PROJECTOR_SCALE, VERMILION,
+                     legend_above, new_figure, source)
 
 #: An odd quantity's curve is drawn in two colours by sign, with these legend labels: its
 #: radius is measured from the bold zero ring, so negative values lie inside it.
@@ -29,6 +30,20 @@ QUANTITIES = {
     "FTy": ("FTy_over_mu0FN", "F_T,y/(μ₀F_N) vs θ₀ (Fig. 11c)", "odd"),
 }
 SPOKES_DEG = tuple(range(0, 360, 30))
+#: The angle labels' distance from the centre, and half the side of the square shown, in
+#: rim radii (the square leaves room for an angle label of ``LABEL_FONT_PX``).
+ANGLE_LABEL_R, EXTENT_R = 1.1, 1.32
+#: The rings' values are written along this ray (degrees), between the 0 and 30 degree
+#: spokes: there the labels lie one beside the next, and apart from the angle labels.
+RING_LABEL_DEG = 15
+#: The ring labels are laid out for the smallest polar frame drawn (px) and the projector's
+#: text (px), with a gap (px) around each label: every ``s``-th ring is labelled, the
+#: smallest ``s`` whose labels run into none another nor an angle label.
+LABEL_FRAME_PX, LABEL_FONT_PX, LABEL_GAP_PX = 270, MIN_TEXT_PX * PROJECTOR_SCALE, 2
+#: Characters' widths (em) in DejaVu Sans, the widest of the usual sans-serif fonts; any
+#: other character counts as ``WIDE_EM``.
+CHAR_EM, WIDE_EM = {**dict.fromkeys("0123456789", 0.64), ".": 0.32, "-": 0.37, "e": 0.62,
+                    "°": 0.5}, 0.84
 
 
 def full_circle(theta0, values, parity: str):
@@ -70,14 +85,53 @@ def radial_axis(values, parity: str) -> tuple[float, float, list]:
     return 0.0, n * step, [k * step for k in range(1, n + 1)]
 
 
+def _label_box(x: float, y: float, text: str) -> tuple:
+    """The box (px, with the gap around it) of a label centred on (x, y) px."""
+    half_w = sum(CHAR_EM.get(ch, WIDE_EM) for ch in text) * LABEL_FONT_PX / 2 + LABEL_GAP_PX
+    half_h = LABEL_FONT_PX / 2 + LABEL_GAP_PX
+    return (x - half_w, y - half_h, x + half_w, y + half_h)
+
+
+def _overlap(a: tuple, b: tuple) -> bool:
+    return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
+
+
+def labelled_rings(axis) -> list[int]:
+    """The indices of the rings of ``axis`` (``radial_axis``) whose values are written.
+
+    Every ``s``-th ring, counted from the zero ring of an odd quantity or else from the rim
+    (so both are always labelled), for the smallest ``s`` whose labels on the ray at
+    ``RING_LABEL_DEG`` run into neither each other nor an angle label, in a frame of
+    ``LABEL_FRAME_PX`` with text of ``LABEL_FONT_PX``. (A larger frame or the screen's
+    smaller text leaves more room.)
+    """
+    r_lo, r_hi, rings = axis
+    n = len(rings)
+    px = LABEL_FRAME_PX / (2 * EXTENT_R * (r_hi - r_lo))  # px per unit of value
+    c, s_ = math.cos(math.radians(RING_LABEL_DEG)), math.sin(math.radians(RING_LABEL_DEG))
+    a = ANGLE_LABEL_R * (r_hi - r_lo) * px
+    angles = [_label_box(a * math.cos(math.radians(d)), a * math.sin(math.radians(d)),
+                         f"{d}°") for d in SPOKES_DEG]
+    first = rings.index(0.0) if r_lo < 0 and 0.0 in rings else n - 1
+    for step in range(1, n + 1):
+        chosen = [i for i in range(n) if (first - i) % step == 0]
+        boxes = [_label_box((rings[i] - r_lo) * px * c, (rings[i] - r_lo) * px * s_,
+                            f"{rings[i]:g}") for i in chosen]
+        if not any(_overlap(b, o) for j, b in enumerate(boxes) for o in boxes[:j] + angles):
+            return chosen
+    return [first]
+
+
 def grid_data(key: str, axis) -> dict:
-    """Rings (labelled with their values), spokes every 30 degrees and angle labels."""
+    """Rings (every ``labelled_rings`` one labelled with its value), spokes every 30 degrees
+    and angle labels."""
     r_lo, r_hi, rings = axis
     R = r_hi - r_lo
     phi = np.linspace(0, 2 * math.pi, 121)
     ring_r = [v - r_lo for v in rings]
     spokes = np.radians(SPOKES_DEG)
-    label_angle = math.radians(112)
+    label_angle = math.radians(RING_LABEL_DEG)
+    labelled = labelled_rings(axis)
     return {
         f"polar_{key}_rings": {"xs": [r * np.cos(phi) for r in ring_r],
                                "ys": [r * np.sin(phi) for r in ring_r],
@@ -85,11 +139,11 @@ def grid_data(key: str, axis) -> dict:
                                "width": [2.0 if v == 0 and r_lo < 0 else 1.0 for v in rings]},
         f"polar_{key}_spokes": {"xs": [[0.0, R * math.cos(a)] for a in spokes],
                                 "ys": [[0.0, R * math.sin(a)] for a in spokes]},
-        f"polar_{key}_ring_labels": {"x": [r * math.cos(label_angle) for r in ring_r],
-                                     "y": [r * math.sin(label_angle) for r in ring_r],
-                                     "text": [f"{v:g}" for v in rings]},
-        f"polar_{key}_angle_labels": {"x": [1.1 * R * math.cos(a) for a in spokes],
-                                      "y": [1.1 * R * math.sin(a) for a in spokes],
+        f"polar_{key}_ring_labels": {"x": [ring_r[i] * math.cos(label_angle) for i in labelled],
+                                     "y": [ring_r[i] * math.sin(label_angle) for i in labelled],
+                                     "text": [f"{rings[i]:g}" for i in labelled]},
+        f"polar_{key}_angle_labels": {"x": [ANGLE_LABEL_R * R * math.cos(a) for a in spokes],
+                                      "y": [ANGLE_LABEL_R * R * math.sin(a) for a in spokes],
                                       "text": [f"{d}°" for d in SPOKES_DEG]},
     }
 
@@ -153,8 +207,10 @@ def polar_figure(key: str, theta0=(), values=(), current=None, width: int = 310,
                            line_alpha=0.6, line_width="width")
     fig.multi_line("xs", "ys", source=src[f"polar_{key}_spokes"], line_color=GREY,
                    line_alpha=0.4, line_width=1)
+    # On a light ground: a ring's value stays legible where a curve passes under it.
     fig.text("x", "y", "text", source=src[f"polar_{key}_ring_labels"], text_font_size="12px",
-             text_color="#444444", text_align="center", text_baseline="middle")
+             text_color="#444444", text_align="center", text_baseline="middle",
+             background_fill_color="white", background_fill_alpha=0.7)
     fig.text("x", "y", "text", source=src[f"polar_{key}_angle_labels"],
                       text_font_size="12px", text_color="#444444", text_align="center",
                       text_baseline="middle")
@@ -180,7 +236,7 @@ def polar_figure(key: str, theta0=(), values=(), current=None, width: int = 310,
 
 def extent(axis) -> float:
     """Half the side of the square shown: the rim with room for the angle labels."""
-    return 1.22 * (axis[1] - axis[0])
+    return EXTENT_R * (axis[1] - axis[0])
 
 
 def extent_data(key: str, axis) -> dict:

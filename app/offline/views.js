@@ -183,10 +183,50 @@
     return [0, best[0] * best[1], rings];
   }
 
+  // The ring labels' layout (polar.labelled_rings and its constants).
+  var ANGLE_LABEL_R = 1.1, EXTENT_R = 1.32, RING_LABEL_DEG = 15;
+  var LABEL_FRAME_PX = 270, LABEL_FONT_PX = 18, LABEL_GAP_PX = 2, WIDE_EM = 0.84;
+  var CHAR_EM = {".": 0.32, "-": 0.37, "e": 0.62, "°": 0.5};
+  for (var ch = 0; ch < 10; ch++) CHAR_EM[String(ch)] = 0.64;
+
+  function labelBox(x, y, text) {
+    var em = 0;
+    for (var k = 0; k < text.length; k++) em += text[k] in CHAR_EM ? CHAR_EM[text[k]] : WIDE_EM;
+    var hw = em * LABEL_FONT_PX / 2 + LABEL_GAP_PX, hh = LABEL_FONT_PX / 2 + LABEL_GAP_PX;
+    return [x - hw, y - hh, x + hw, y + hh];
+  }
+
+  function overlap(a, b) { return a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]; }
+
+  /** The indices of the labelled rings (polar.labelled_rings). */
+  function labelledRings(axis) {
+    var rLo = axis[0], rings = axis[2], n = rings.length, i, j, k;
+    var px = LABEL_FRAME_PX / (2 * EXTENT_R * (axis[1] - rLo));
+    var la = RING_LABEL_DEG * Math.PI / 180, c = Math.cos(la), sn = Math.sin(la);
+    var a = ANGLE_LABEL_R * (axis[1] - rLo) * px;
+    var angles = SPOKES_DEG.map(function (d) {
+      return labelBox(a * Math.cos(d * Math.PI / 180), a * Math.sin(d * Math.PI / 180), d + "°");
+    });
+    var first = rLo < 0 && rings.indexOf(0) >= 0 ? rings.indexOf(0) : n - 1;
+    for (var step = 1; step <= n; step++) {
+      var chosen = [], boxes = [], clash = false;
+      for (i = 0; i < n; i++) if ((((first - i) % step) + step) % step === 0) chosen.push(i);
+      for (j = 0; j < chosen.length && !clash; j++) {
+        var r = (rings[chosen[j]] - rLo) * px, b = labelBox(r * c, r * sn, fmtG(rings[chosen[j]]));
+        for (k = 0; k < boxes.length && !clash; k++) clash = overlap(b, boxes[k]);
+        for (k = 0; k < angles.length && !clash; k++) clash = overlap(b, angles[k]);
+        boxes.push(b);
+      }
+      if (!clash) return chosen;
+    }
+    return [first];
+  }
+
   function gridData(key, axis) {
     var rLo = axis[0], R = axis[1] - axis[0], rings = axis[2];
     var phi = linspace(0, 2 * Math.PI, 121), ringR = rings.map(function (v) { return v - rLo; });
-    var spokes = SPOKES_DEG.map(function (a) { return a * Math.PI / 180; }), la = 112 * Math.PI / 180;
+    var spokes = SPOKES_DEG.map(function (a) { return a * Math.PI / 180; });
+    var la = RING_LABEL_DEG * Math.PI / 180, labelled = labelledRings(axis);
     var out = {};
     out["polar_" + key + "_rings"] = {
       xs: ringR.map(function (r) { return phi.map(function (p) { return r * Math.cos(p); }); }),
@@ -196,18 +236,18 @@
       xs: spokes.map(function (a) { return [0, R * Math.cos(a)]; }),
       ys: spokes.map(function (a) { return [0, R * Math.sin(a)]; })};
     out["polar_" + key + "_ring_labels"] = {
-      x: ringR.map(function (r) { return r * Math.cos(la); }),
-      y: ringR.map(function (r) { return r * Math.sin(la); }),
-      text: rings.map(function (v) { return fmtG(v); })};
+      x: labelled.map(function (i) { return ringR[i] * Math.cos(la); }),
+      y: labelled.map(function (i) { return ringR[i] * Math.sin(la); }),
+      text: labelled.map(function (i) { return fmtG(rings[i]); })};
     out["polar_" + key + "_angle_labels"] = {
-      x: spokes.map(function (a) { return 1.1 * R * Math.cos(a); }),
-      y: spokes.map(function (a) { return 1.1 * R * Math.sin(a); }),
+      x: spokes.map(function (a) { return ANGLE_LABEL_R * R * Math.cos(a); }),
+      y: spokes.map(function (a) { return ANGLE_LABEL_R * R * Math.sin(a); }),
       text: SPOKES_DEG.map(function (a) { return a + "°"; })};
     return out;
   }
 
   function extentData(key, axis) {
-    var E = 1.22 * (axis[1] - axis[0]), out = {};
+    var E = EXTENT_R * (axis[1] - axis[0]), out = {};
     out["polar_" + key + "_extent"] = {x: [-E, E], y: [-E, E]};
     return out;
   }
@@ -280,7 +320,7 @@
    * ``names``: app.texts.AVERAGE_NAMES (in its order), ``columns``: AVERAGE_COLUMNS. */
   function uniformMarkdown(row, average, note, names, columns, felt) {
     if (row === null || row === undefined)
-      return "| Uniform array | |\n|:--|--:|\n| F_T,x/(μ₀F_N) | " + (note || "…") + " |";
+      return "| Uniform array | value |\n|:--|--:|\n| F_T,x/(μ₀F_N) | " + (note || "…") + " |";
     var order = [felt].concat(Object.keys(names).filter(function (a) { return a !== felt; }));
     var rows = order.map(function (a) {
       var v = fmtReadout(row[columns[a]]);
@@ -292,7 +332,7 @@
     var body = rows.map(function (r) { return "| " + r[0] + " | " + r[1] + " |"; }).join("\n");
     var ok = row.success === undefined ? true : row.success;
     var warn = ok ? "" : "\n\n⚠ not every member finished its contact (" + (row.n_failed || 0) + " failed)";
-    return "| Uniform array (all θ₀) | |\n|:--|--:|\n" + body + warn;
+    return "| Uniform array (all θ₀) | value |\n|:--|--:|\n" + body + warn;
   }
 
   return {
@@ -300,7 +340,8 @@
     viewBox: viewBox, sceneData: sceneData, supportFrames: supportFrames,
     energyFrames: energyFrames, forceData: forceData, forceXRange: forceXRange,
     forceYRange: forceYRange, polarData: polarData, polarNow: polarNow,
-    extentData: extentData, radialAxis: radialAxis, changeWords: changeWords,
+    extentData: extentData, radialAxis: radialAxis, labelledRings: labelledRings,
+    changeWords: changeWords,
     headlineText: headlineText, interp: interp, linspace: linspace
   };
 }));

@@ -37,7 +37,7 @@ BANNER_CSS = """
 
 def readouts_markdown(record: dict) -> str:
     """The headline and the table of a ``DesignPoint.to_dict`` record, as Markdown."""
-    table = "| the array | |\n|:--|--:|\n" + "\n".join(
+    table = "| the array | value |\n|:--|--:|\n" + "\n".join(
         f"| {r['what']} | {r['text']} |" for r in rows(record))
     note = "" if record["success"] else f"\n\n**Not converged:** {record['message']}"
     return (f'<span class="design-headline-text">**{headline(record)}**</span>\n\n'

@@ -88,14 +88,14 @@ def fixed_markdown(data) -> str:
     rows.append(("energy residual / W",
                  _fmt(abs(r.energy_residual / r.W) if r and r.W else None, 2)))
     body = "\n".join(f"| {k} | {v} |" for k, v in rows)
-    return f"| Fixed array, θ₀ = {theta0_deg:g}° | |\n|:--|--:|\n{body}"
+    return f"| Fixed array, θ₀ = {theta0_deg:g}° | value |\n|:--|--:|\n{body}"
 
 
 def uniform_markdown(row: dict | None, average: str, note: str = "") -> str:
     """The uniform array (theta0 uniform on [0, 2 pi)): both averages of its friction, the
     slab's (the headline's) first; the one the plots use (``average``) in bold."""
     if row is None:
-        return f"| Uniform array | |\n|:--|--:|\n| F_T,x/(μ₀F_N) | {note or '…'} |"
+        return f"| Uniform array | value |\n|:--|--:|\n| F_T,x/(μ₀F_N) | {note or '…'} |"
     order = (FELT_AVERAGE, *(a for a in AVERAGE_NAMES if a != FELT_AVERAGE))
     rows = [(f"friction F_T,x/(μ₀F_N), {AVERAGE_NAMES[a]}",
              f"**{_fmt(row[AVERAGE_COLUMNS[a]])}**" if a == average
@@ -106,7 +106,7 @@ def uniform_markdown(row: dict | None, average: str, note: str = "") -> str:
     body = "\n".join(f"| {k} | {v} |" for k, v in rows)
     warn = "" if row.get("success", True) else (
         f"\n\n⚠ not every member finished its contact ({row.get('n_failed', 0)} failed)")
-    return f"| Uniform array (all θ₀) | |\n|:--|--:|\n{body}{warn}"
+    return f"| Uniform array (all θ₀) | value |\n|:--|--:|\n{body}{warn}"
 
 
 #: The numbers compared between a pinned state A and the current B: (label, fixed-array

@@ -1,7 +1,8 @@
 """Projector mode as a class sees it: at 1280x720 and 1920x1080 with ``?projector=1``, on
 every tab, the page never scrolls sideways, the main figure is drawn at least as large as
 in normal mode, every figure's text is at least the projector minimum, legends, titles,
-colour bars and the top view's arrow labels lie inside their figure and do not overlap,
+colour bars, the top view's arrow labels and the polar diagrams' ring and angle labels
+lie inside their figure (a glyph's text: inside its frame) and do not overlap,
 no figure's title and no button's caption runs out of its box, and the headline is above
 the fold. Projected or not, named ticks ("W so far", "its split") do not run into each
 other and colour scales have a readable length. Every tab, normal and projected, on both
@@ -77,6 +78,21 @@ _FIGURES_JS = """() => {
         const left = data.align[i] === "right" ? x - w : data.align[i] === "center" ? x - w / 2 : x;
         const top = data.baseline[i] === "top" ? y : data.baseline[i] === "bottom" ? y - h : y - h / 2;
         labels.push({text: data.text[i], box: [left, top, w, h]});
+      }
+    }
+    // The polar diagrams' ring and angle labels: text glyphs, drawn clipped to the frame.
+    for (const r of m.renderers) {
+      const g = r.glyph, src = r.data_source;
+      if (!g || g.type !== "Text" || !/_(ring|angle)_labels$/.test((src && src.name) || ""))
+        continue;
+      const data = src.data instanceof Map ? Object.fromEntries(src.data) : src.data;
+      const size = parseFloat(g.text_font_size.value ?? g.text_font_size);
+      ctx.font = `${size}px ${g.text_font.value ?? g.text_font}`;
+      const xs = v.frame.x_scale, ys = v.frame.y_scale;
+      for (let i = 0; i < data.text.length; i++) {
+        const w = ctx.measureText(data.text[i]).width;
+        const x = xs.compute(data.x[i]), y = ys.compute(data.y[i]);
+        labels.push({text: data.text[i], box: [x - w / 2, y - size / 2, w, size], clip: true});
       }
     }
     // Named ticks under the plot ("W so far", "its split"): their text boxes, across.
@@ -236,8 +252,9 @@ def test_projector_mode_helps_every_tab(screen, app_url, tab):
         out = [p for p in fig["parts"] if not _inside(p["box"], canvas)]
         assert not out, f"{tab}: {name}'s {[p['what'] for p in out]} run out of the figure: {out}"
         labels = fig["labels"]
-        for label in labels:
-            assert _inside(label["box"], canvas), f"{tab}: {name}'s label {label} is cut off"
+        for label in labels:  # a glyph's text is clipped to the frame, a label to the canvas
+            room = fig["frame"] if label.get("clip") else canvas
+            assert _inside(label["box"], room), f"{tab}: {name}'s label {label} is cut off"
         for i, a in enumerate(labels):
             for b in labels[i + 1:]:
                 assert not _overlap(a["box"], b["box"]), \
