@@ -122,7 +122,7 @@ def test_the_support_views_are_the_dashboards(contacts):
 
 #: Radial axes of every kind: (values, parity) for ``polar.radial_axis``.
 POLAR_AXES = [([1.1], "even"), ([0.19], "even"), ([23.0], "even"), ([3e-5], "even"),
-              ([0.5], "even"), ([1e6], "even"), ([0.0031, -0.0007], "even"), ([145.0], "even"),
+              ([0.5], "even"), ([4.2], "even"), ([0.0031, -0.0007], "even"), ([145.0], "even"),
               ([-0.14, 0.14], "odd"), ([-0.09, 0.09], "odd"), ([2.2e-7, -1e-7], "odd")]
 
 

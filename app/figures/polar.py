@@ -32,14 +32,16 @@ QUANTITIES = {
 SPOKES_DEG = tuple(range(0, 360, 30))
 #: The angle labels' distance from the centre, and half the side of the square shown, in
 #: rim radii (the square leaves room for an angle label of ``LABEL_FONT_PX``).
-ANGLE_LABEL_R, EXTENT_R = 1.1, 1.32
+ANGLE_LABEL_R, EXTENT_R = 1.1, 1.34
 #: The rings' values are written along this ray (degrees), between the 0 and 30 degree
 #: spokes: there the labels lie one beside the next, and apart from the angle labels.
 RING_LABEL_DEG = 15
-#: The ring labels are laid out for the smallest polar frame drawn (px) and the projector's
-#: text (px), with a gap (px) around each label: every ``s``-th ring is labelled, the
-#: smallest ``s`` whose labels run into none another nor an angle label.
-LABEL_FRAME_PX, LABEL_FONT_PX, LABEL_GAP_PX = 270, MIN_TEXT_PX * PROJECTOR_SCALE, 2
+#: The ring labels are laid out for a frame (px) and text (px), with a gap (px) around each
+#: label: every ``s``-th ring is labelled, the smallest ``s`` whose labels run into none
+#: another nor an angle label. The figures fill their place on the page; the tightest is
+#: the Design tab's at 1280x720, ~170 px wide with 12 px text: this frame with the
+#: projector's text is as tight (tests/browser/test_projector.py checks both modes).
+LABEL_FRAME_PX, LABEL_FONT_PX, LABEL_GAP_PX = 250, MIN_TEXT_PX * PROJECTOR_SCALE, 2
 #: Characters' widths (em) in DejaVu Sans, the widest of the usual sans-serif fonts; any
 #: other character counts as ``WIDE_EM``.
 CHAR_EM, WIDE_EM = {**dict.fromkeys("0123456789", 0.64), ".": 0.32, "-": 0.37, "e": 0.62,

@@ -184,8 +184,8 @@
   }
 
   // The ring labels' layout (polar.labelled_rings and its constants).
-  var ANGLE_LABEL_R = 1.1, EXTENT_R = 1.32, RING_LABEL_DEG = 15;
-  var LABEL_FRAME_PX = 270, LABEL_FONT_PX = 18, LABEL_GAP_PX = 2, WIDE_EM = 0.84;
+  var ANGLE_LABEL_R = 1.1, EXTENT_R = 1.34, RING_LABEL_DEG = 15;
+  var LABEL_FRAME_PX = 250, LABEL_FONT_PX = 18, LABEL_GAP_PX = 2, WIDE_EM = 0.84;
   var CHAR_EM = {".": 0.32, "-": 0.37, "e": 0.62, "°": 0.5};
   for (var ch = 0; ch < 10; ch++) CHAR_EM[String(ch)] = 0.64;
 

@@ -1,11 +1,11 @@
 """Projector mode as a class sees it: at 1280x720 and 1920x1080 with ``?projector=1``, on
 every tab, the page never scrolls sideways, the main figure is drawn at least as large as
 in normal mode, every figure's text is at least the projector minimum, legends, titles,
-colour bars, the top view's arrow labels and the polar diagrams' ring and angle labels
-lie inside their figure (a glyph's text: inside its frame) and do not overlap,
-no figure's title and no button's caption runs out of its box, and the headline is above
-the fold. Projected or not, named ticks ("W so far", "its split") do not run into each
-other and colour scales have a readable length. Every tab, normal and projected, on both
+colour bars lie inside their figure, no figure's title and no button's caption runs out
+of its box, and the headline is above the fold. Projected or not, the top view's arrow
+labels and the polar diagrams' ring and angle labels lie inside their figure (a glyph's
+text: inside its frame) and do not overlap, named ticks ("W so far", "its split") do not
+run into each other and colour scales have a readable length. Every tab, normal and projected, on both
 screens, is saved as a screenshot to ``$MICROPILLAR_SCREENSHOTS`` (default: a temporary
 folder) for a person to look at, as the pages go from tab to tab.
 
@@ -251,14 +251,19 @@ def test_projector_mode_helps_every_tab(screen, app_url, tab):
         canvas = [0, 0, fig["page"][2], fig["page"][3]]
         out = [p for p in fig["parts"] if not _inside(p["box"], canvas)]
         assert not out, f"{tab}: {name}'s {[p['what'] for p in out]} run out of the figure: {out}"
-        labels = fig["labels"]
-        for label in labels:  # a glyph's text is clipped to the frame, a label to the canvas
-            room = fig["frame"] if label.get("clip") else canvas
-            assert _inside(label["box"], room), f"{tab}: {name}'s label {label} is cut off"
-        for i, a in enumerate(labels):
-            for b in labels[i + 1:]:
-                assert not _overlap(a["box"], b["box"]), \
-                    f"{tab}: {name}'s labels {a['text']!r} and {b['text']!r} overlap: {a}, {b}"
+    for mode, drawn in (("projected", figures), ("normal", normal.get(tab, {}))):
+        for name, fig in drawn.items():
+            canvas = [0, 0, fig["page"][2], fig["page"][3]]
+            labels = fig["labels"]
+            for label in labels:  # a glyph's text is clipped to the frame, a label to the canvas
+                room = fig["frame"] if label.get("clip") else canvas
+                assert _inside(label["box"], room), \
+                    f"{tab} ({mode}): {name}'s label {label} is cut off"
+            for i, a in enumerate(labels):
+                for b in labels[i + 1:]:
+                    assert not _overlap(a["box"], b["box"]), (
+                        f"{tab} ({mode}): {name}'s labels {a['text']!r} and {b['text']!r} "
+                        f"overlap: {a}, {b}")
     for mode, drawn in (("projected", figures), ("normal", normal.get(tab, {}))):
         for name, fig in drawn.items():
             for bar in (p for p in fig["parts"] if p["what"] == "ColorBar"):
