@@ -205,6 +205,14 @@ def test_pillar_bad_quantities_name_the_flag(capsys, change, flag):
     assert code == 2 and out == "" and f"error: {flag}:" in err and err.count("\n") == 1
 
 
+def test_pillar_names_every_missing_value_at_once(capsys):
+    given = EXAMPLE[:EXAMPLE.index("--rho")]  # D, h, E, nu
+    code, out, err = run(capsys, "pillar", *given)
+    assert code == 2 and out == "" and err.count("\n") == 1
+    missing = [f for f in ("--rho", "--r0", "--d-x", "--d-y", "--L-x", "--L-y", "--F-N", "--V0")]
+    assert f"error: {', '.join(missing)}: required" in err, err
+
+
 def test_pillar_budget_that_runs_out_prints_the_result_and_its_outcome(capsys):
     """The worked example at 1 cm/s lies beyond the model range (computed scaled, stiff and
     heavily loaded: minutes of contacts); half a second ends it with a named outcome, finite

@@ -185,8 +185,9 @@ def _pillar_design(args):
     missing = [flag for flag, name in _PILLAR.items()
                if values[name] is None and name in ("D", "h", "E", "rho", "r0", "d_x", "d_y",
                                                     "L_x", "L_y", "F_N", "V0")]
-    if missing:
-        raise UsageError(missing[0], "required")
+    if missing:  # all at once, not one per attempt
+        raise UsageError(", ".join(missing), "required (values with units, e.g. --h '50 um'; "
+                         "each is described by --help)")
     kwargs = {k: v for k, v in values.items() if v is not None}
     if args.friction is not None:
         kwargs.update(_friction_fields(args.friction, kwargs))
