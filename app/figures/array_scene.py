@@ -186,8 +186,8 @@ def array_scene(motion, player, width: int = 1000, panel_height: int = 220,
         ("line", VERMILION, "solid", 3, "F_T,x/(μ₀F_N) mean over the steady window"),
         ("line", VERMILION, "dashed", 2,
          f"array model, steady force = {m['FTx_over_mu0FN_duration']:.3f}"),
-        ("line", GREY, "dotted", 2, "rigid supports = 1"),
-        ("box", GREEN, "solid", 0, "steady window")]), width=width, name="array_panel_key",
+        # (the steady window's band is labelled on the panel itself)
+        ("line", GREY, "dotted", 2, "rigid supports = 1")]), width=width, name="array_panel_key",
         styles={"font-size": TEXT_SIZE})
 
     player.on_frame(CustomJS(args=dict(
