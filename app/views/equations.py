@@ -10,6 +10,21 @@ from .layout import SR_ONLY_CSS
 from ..texts import EQUATIONS, EQUATIONS_INTRO, EQUATIONS_NOTES
 
 
+#: A long equation on a phone scrolls within its line (``PageAccess`` makes such a line
+#: focusable, ``tabindex``): a shadow at the edge where more of it lies shows that it
+#: does. The white covers move with the equation's ends and hide a shadow once that end is
+#: in view.
+SCROLL_HINT_CSS = ":host([tabindex]) {background: " + ", ".join([
+    "linear-gradient(to right, #fff 45%, rgba(255,255,255,0)) left center / 40px 100% "
+    "no-repeat local",
+    "linear-gradient(to left, #fff 45%, rgba(255,255,255,0)) right center / 40px 100% "
+    "no-repeat local",
+    "radial-gradient(farthest-side at 0 50%, rgba(0,0,0,0.3), rgba(0,0,0,0)) left center "
+    "/ 12px 100% no-repeat scroll",
+    "radial-gradient(farthest-side at 100% 50%, rgba(0,0,0,0.3), rgba(0,0,0,0)) right "
+    "center / 12px 100% no-repeat scroll #fff"]) + ";}"
+
+
 class EquationsView(pn.viewable.Viewer):
     """Captions and typeset equations in two columns, readable at 1280 x 720."""
 
@@ -25,6 +40,7 @@ class EquationsView(pn.viewable.Viewer):
                            pn.pane.LaTeX(f"$${latex}$$", renderer="mathjax",
                                          styles={"font-size": "1em", "overflow-x": "auto",
                                                  "max-width": "calc(100vw - 30px)"},
+                                         stylesheets=[SCROLL_HINT_CSS],
                                          css_classes=["scroll-x"], margin=(0, 10)),
                            margin=(2, 0))
                  for caption, latex in EQUATIONS]

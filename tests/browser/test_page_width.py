@@ -32,18 +32,45 @@ def _open(page, url: str) -> None:
 def test_no_tab_scrolls_sideways(browser, app_url, tab, viewport):
     """Opened from a link, a tab fits the screen's width: on a phone its own layout stacks
     (the Design tab's inputs, figures and readouts; long equations scroll within their
-    line) and the hidden tabs do not widen the page; at 1280 x 720 the Design tab's
-    figures take the width its inputs and readouts leave. The Design tab is measured again
-    while its array is computed: the banner saying so stays within its pane."""
+    line, with a shadow at the edge that shows it) and the hidden tabs do not widen the
+    page; at 1280 x 720 the Design tab's figures take the width its inputs and readouts
+    leave. The Design tab is measured again while its array is computed: the banner
+    saying so stays within its pane."""
     context, page = _new_page(browser, viewport)
     try:
         _open(page, f"{app_url}?tab={tab}")
         if tab == "design":
             _banner_fits(page, viewport)
+        if tab == "equations":
+            _long_equations_show_they_scroll(page)
         width = page.evaluate("() => document.scrollingElement.scrollWidth")
         assert width <= viewport["width"], f"the {tab} tab scrolls sideways ({width} px wide)"
     finally:
         context.close()
+
+
+def _long_equations_show_they_scroll(page) -> None:
+    """An equation wider than the phone scrolls within its line and shows a shadow at its
+    edge (a gradient drawn with the line's scroll); one that fits has none."""
+    page.locator(".equations mjx-container").first.wait_for(state="visible")
+    pt.settle(page)
+    lines = page.evaluate("""() => {
+      const out = [];
+      const walk = (root) => {
+        for (const e of root.querySelectorAll(".scroll-x")) {
+          const cs = getComputedStyle(e);
+          out.push({over: e.scrollWidth > e.clientWidth + 1, image: cs.backgroundImage,
+                    attach: cs.backgroundAttachment});
+        }
+        for (const e of root.querySelectorAll("*")) if (e.shadowRoot) walk(e.shadowRoot);
+      };
+      walk(document);
+      return out;
+    }""")
+    assert any(line["over"] for line in lines), "no equation is wider than the phone"
+    for line in lines:
+        hinted = "gradient" in line["image"] and "local" in line["attach"]
+        assert hinted == line["over"], line
 
 
 def _banner_fits(page, viewport) -> None:
