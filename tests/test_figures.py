@@ -45,6 +45,27 @@ def test_forces_fig7(series):
     assert F.annotation(fig, "forces_mu0").location == pytest.approx(mu0())
     assert {item.label["value"] for item in fig.legend[0].items} == {
         "|F_f|", "F_f,x", "F_f,y"}
+    # mu0's label: at the right end of the range, above its line, clear of the contact's
+    # early peaks.
+    label = F.annotation(fig, "forces_mu0_label")
+    assert label.x == fig.x_range.end and label.y == pytest.approx(mu0())
+    assert (label.text_align, label.text_baseline) == ("right", "bottom")
+
+
+def test_the_support_tabs_mu0_label_follows_each_new_range(pool):
+    from app.state import ExplorerState
+    from app.results import SessionResults
+    from app.views.support import SupportView
+
+    state = ExplorerState()
+    results = SessionResults(state)
+    view = SupportView(state=state, results=results)
+    results.start()
+    label = F.annotation(view.forces, "forces_mu0_label")
+    for k_r in (0.05, 2.0):
+        state.k_r = k_r
+        assert label.x == view.forces.x_range.end, (k_r, label.x, view.forces.x_range.end)
+    assert view.forces.x_range.end != F.forces_figure(None).x_range.end
 
 
 @pytest.mark.parametrize("key, parity", [("FTx", 1), ("FTy", -1)])

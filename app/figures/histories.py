@@ -79,9 +79,12 @@ def forces_figure(series, params=None, frame: int = 0, width: int = 340, height:
                      dimension="height", line_color=GREY, line_width=1.5, name="forces_time")
     fig.add_layout(time_line)
     animated(marker, time_line)
-    fig.add_layout(Label(x=48, y=m0, x_units="screen", text=f"μ₀ = {m0:.4f}",
+    # At the right end, above its line: the contact's early peaks are at the left, and at
+    # the end the curves lie along mu0. (Who sets a new range sets its x too: the support
+    # view, the offline page's support.js.)
+    fig.add_layout(Label(x=fig.x_range.end, y=m0, text=f"μ₀ = {m0:.4f}",
                          name="forces_mu0_label", text_color=GREEN, text_font_size="12px",
-                         y_offset=2))
+                         text_align="right", text_baseline="bottom", x_offset=-6, y_offset=3))
     legend_below(fig)
     return fig
 

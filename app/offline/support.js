@@ -31,7 +31,9 @@
       models.range(scene, "x_range", [box[0], box[1]]);
       models.range(scene, "y_range", [box[2], box[3]]);
       models.setData(VIEWS.forceData(s));
-      models.range(figure("forces"), "x_range", VIEWS.forceXRange(s));
+      var forcesX = VIEWS.forceXRange(s);
+      models.range(figure("forces"), "x_range", forcesX);
+      models.model("forces_mu0_label").setv({x: forcesX[1]});  // mu0's label at the end
       models.range(figure("forces"), "y_range", VIEWS.forceYRange(s, CONFIG.mu0));
       var energies = VIEWS.energyFrames(s, CONFIG);
       models.range(figure("energy_live"), "y_range", energies.range);

@@ -81,6 +81,7 @@ class SupportView(pn.viewable.Viewer):
         self.sound_toggle = add_sound(self.player, self.frames)
         self.scene = F.scene_figure(None, p, 0, width=340, height=330)
         self.forces = F.forces_figure(None, p, 0, width=340, height=330)
+        self._mu0_label = F.annotation(self.forces, "forces_mu0_label")  # at the range's end
         self.friction = F.friction_law_figure(None, p, 0, width=340, height=225)
         self.energy_frames = source("energy_live_frames", _placeholder_energies(N_FRAMES))
         self.energy_layout = live_energy_figure(_placeholder_energies(N_FRAMES), self.player,
@@ -181,6 +182,7 @@ class SupportView(pn.viewable.Viewer):
         xs = [F.force_x_range(series) for series, _ in shown]
         ys = [F.force_y_range(series, mu0(params)) for series, params in shown]
         self.forces.x_range.update(start=min(x[0] for x in xs), end=max(x[1] for x in xs))
+        self._mu0_label.x = self.forces.x_range.end
         self.forces.y_range.update(start=min(y[0] for y in ys), end=max(y[1] for y in ys))
 
     @param.depends("results.support_A", watch=True)

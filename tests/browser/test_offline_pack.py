@@ -152,6 +152,13 @@ def test_friction_histories_and_energy_bars_are_the_kernels(offline):
     forces = offline.data("forces")  # Fig. 7
     assert forces["F_x"] == pytest.approx(series["F_x"], abs=1e-12)
     assert forces["F_y"] == pytest.approx(series["F_y"], abs=1e-12)
+    # mu0's label stands at the right end of the new contact's time axis.
+    label_x, end = offline.page.evaluate(
+        "(() => { const all = [...Bokeh.documents[0].all_models];"
+        " const fig = all.find((m) => m.name === 'forces' && 'x_range' in m);"
+        " return [all.find((m) => m.name === 'forces_mu0_label').x, fig.x_range.end]; })()")
+    assert label_x == pytest.approx(end)
+    assert end == pytest.approx(1.02 * series["tau"][-1], rel=1e-3)
     # The energy bars follow the player: step to the last frame, the bars are W and its
     # split at tau_out (Eq. 12: W = D_x + D_y + U_el + K).
     offline.page.locator("button", has_text="Step ▶").click()
