@@ -57,7 +57,7 @@ def _dejavu_width(text: str, px: float) -> float:
     return ImageFont.truetype(path, 100).getlength(text) * px / 100
 
 
-def _boxes(axis, indices, frame_px, font_px):
+def _drawn_boxes(axis, indices, frame_px, font_px):
     """Text boxes (px, centred, no gap) of the ring labels ``indices`` and the angle labels
     of ``axis`` in a square frame of ``frame_px`` showing +-``polar.extent(axis)``."""
     px = frame_px / (2 * polar.extent(axis))
@@ -94,7 +94,7 @@ def test_the_ring_labels_run_into_nothing_with_projector_text():
     for values, parity in AXES:
         axis = polar.radial_axis(values, parity)
         chosen = polar.labelled_rings(axis)
-        rings, angles = _boxes(axis, chosen, polar.LABEL_FRAME_PX, polar.LABEL_FONT_PX)
+        rings, angles = _drawn_boxes(axis, chosen, polar.LABEL_FRAME_PX, polar.LABEL_FONT_PX)
         where = f"{[f'{v:g}' for v in axis[2]]}: labelled {[axis[2][i] for i in chosen]}"
         for j, b in enumerate(rings):
             assert not any(_clash(b, o) for o in rings[:j] + angles), where
@@ -116,16 +116,9 @@ def test_the_ring_labels_are_as_many_as_fit():
         step = int(chosen[1] - chosen[0]) if len(chosen) > 1 else len(axis[2])
         if step == 1:
             continue
-        first = chosen[len(chosen) // 2] if axis[0] < 0 else chosen[-1]
+        first = axis[2].index(0.0) if axis[0] < 0 else len(axis[2]) - 1
         denser = [i for i in range(len(axis[2])) if (first - i) % (step - 1) == 0]
-        px = polar.LABEL_FRAME_PX / (2 * polar.extent(axis))
-        c, s = (f(math.radians(polar.RING_LABEL_DEG)) for f in (math.cos, math.sin))
-        boxes = [polar._label_box((axis[2][i] - axis[0]) * px * c,
-                                  (axis[2][i] - axis[0]) * px * s, f"{axis[2][i]:g}")
-                 for i in denser]
-        a = polar.ANGLE_LABEL_R * (axis[1] - axis[0]) * px
-        boxes += [polar._label_box(a * math.cos(math.radians(d)), a * math.sin(math.radians(d)),
-                                   f"{d}°") for d in polar.SPOKES_DEG]
+        texts, angles = polar.label_boxes(axis, denser)
+        boxes = texts + angles
         assert any(_clash(boxes[j], o) for j in range(len(denser)) for o in boxes[:j]
                    + boxes[len(denser):]), f"{axis[2]}: step {step - 1} would fit"
-

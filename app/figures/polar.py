@@ -98,28 +98,36 @@ def _overlap(a: tuple, b: tuple) -> bool:
     return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
 
 
+def label_boxes(axis, indices) -> tuple[list, list]:
+    """The boxes (px, with their gap, about the centre) of the values of the rings
+    ``indices`` of ``axis`` and of the angle labels, as ``labelled_rings`` lays them out."""
+    r_lo, r_hi, rings = axis
+    px = LABEL_FRAME_PX / (2 * EXTENT_R * (r_hi - r_lo))  # px per unit of value
+    c, s = math.cos(math.radians(RING_LABEL_DEG)), math.sin(math.radians(RING_LABEL_DEG))
+    a = ANGLE_LABEL_R * (r_hi - r_lo) * px
+    values = [_label_box((rings[i] - r_lo) * px * c, (rings[i] - r_lo) * px * s,
+                         f"{rings[i]:g}") for i in indices]
+    angles = [_label_box(a * math.cos(math.radians(d)), a * math.sin(math.radians(d)),
+                         f"{d}°") for d in SPOKES_DEG]
+    return values, angles
+
+
 def labelled_rings(axis) -> list[int]:
     """The indices of the rings of ``axis`` (``radial_axis``) whose values are written.
 
     Every ``s``-th ring, counted from the zero ring of an odd quantity or else from the rim
     (so both are always labelled), for the smallest ``s`` whose labels on the ray at
     ``RING_LABEL_DEG`` run into neither each other nor an angle label, in a frame of
-    ``LABEL_FRAME_PX`` with text of ``LABEL_FONT_PX``. (A larger frame or the screen's
-    smaller text leaves more room.)
+    ``LABEL_FRAME_PX`` with text of ``LABEL_FONT_PX`` (``label_boxes``). (A larger frame
+    or the screen's smaller text leaves more room.)
     """
-    r_lo, r_hi, rings = axis
+    r_lo, _, rings = axis
     n = len(rings)
-    px = LABEL_FRAME_PX / (2 * EXTENT_R * (r_hi - r_lo))  # px per unit of value
-    c, s_ = math.cos(math.radians(RING_LABEL_DEG)), math.sin(math.radians(RING_LABEL_DEG))
-    a = ANGLE_LABEL_R * (r_hi - r_lo) * px
-    angles = [_label_box(a * math.cos(math.radians(d)), a * math.sin(math.radians(d)),
-                         f"{d}°") for d in SPOKES_DEG]
     first = rings.index(0.0) if r_lo < 0 and 0.0 in rings else n - 1
     for step in range(1, n + 1):
         chosen = [i for i in range(n) if (first - i) % step == 0]
-        boxes = [_label_box((rings[i] - r_lo) * px * c, (rings[i] - r_lo) * px * s_,
-                            f"{rings[i]:g}") for i in chosen]
-        if not any(_overlap(b, o) for j, b in enumerate(boxes) for o in boxes[:j] + angles):
+        values, angles = label_boxes(axis, chosen)
+        if not any(_overlap(b, o) for j, b in enumerate(values) for o in values[:j] + angles):
             return chosen
     return [first]
 
