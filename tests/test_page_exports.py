@@ -3,6 +3,7 @@ the load curves and the array, read back equal to what the tabs draw; a CSV butt
 is disabled and says "computing…" until its result exists (never a one-line "being
 computed" file); SVG buttons on every figure view."""
 import numpy as np
+import panel as pn
 import pytest
 
 from app import results as results_module
@@ -91,3 +92,32 @@ def test_every_figure_tab_has_csv_and_svg_exports(pool, tab, view, monkeypatch):
     text = v.csv._file().getvalue()
     assert text.startswith("# kind: ") and "computed yet" not in text
     assert "SVG" in v.svg.label
+
+
+def test_the_svg_buttons_are_answered_by_the_page_code_not_a_panel_link(pool, monkeypatch):
+    """Each "Figure (SVG)" button carries the class the page's code answers
+    (``PageBehaviour.svg_exports``) and no Panel ``js_on_click``: a Panel ``Callback``,
+    once registered, makes every layout update of every page in the process walk the
+    page's whole model graph (``app.views.export.svg_button``)."""
+    from panel.links import Callback
+
+    from app.views import Dashboard
+    from app.views.browser import SVG_BUTTON_CLASS
+    from app.views.export import svg_button
+
+    monkeypatch.setattr(worker, "compute_load_regimes", lambda *a, **k: {})
+    monkeypatch.setattr(worker, "LOAD_F_N", (1.0,))
+    page = Dashboard(ExplorerState())
+    buttons = [b for b in page.controls.__panel__().select(pn.widgets.Button)
+               if SVG_BUTTON_CLASS in b.css_classes]
+    for tab, view in (("map", "regime_map"), ("load", "load"), ("array", "array")):
+        page.state.tab = tab
+        buttons.append(getattr(page, view).svg)
+    table = page.behaviour.svg_exports
+    assert len(buttons) == 4
+    for button in buttons:
+        assert SVG_BUTTON_CLASS in button.css_classes and button not in Callback.registry
+        assert [c for c in button.css_classes if c in table], button.css_classes
+    assert table["export-map-svg"] == ["regime_map"] and table["export-page-svg"] == []
+    with pytest.raises(ValueError, match="css='nope'.*SVG_EXPORTS"):
+        svg_button("nope")

@@ -75,8 +75,7 @@ class ArrayView(pn.viewable.Viewer):
         self.export = AnimationExport(state=self.state, results=self.results, what="array")
         self.csv = ResultDownload(lambda: array_csv(self.results.array), "array.csv", "array",
                                   results=self.results, name="array", label="Array CSV")
-        self.svg = svg_button(["array_top", "array_live_panel"], css="array-svg",
-                              label="Figures (SVG)")
+        self.svg = svg_button("array-svg", label="Figures (SVG)")
         # The plots in words and in numbers, once per result (never per frame).
         self.description = LiveDescription(text=array_description(None, "uniform"), width=0,
                                            height=0, margin=0,

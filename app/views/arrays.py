@@ -59,7 +59,7 @@ class RegimeMapView(pn.viewable.Viewer):
         self.csv = ResultDownload(lambda: map_csv(self.results.regime_map), "regime_map.csv",
                                   "map", results=self.results, name="regime_map",
                                   label="Map CSV")
-        self.svg = svg_button(["regime_map"], css="map-svg")
+        self.svg = svg_button("map-svg")
         # The map in words (with the current springs' cell) and in numbers.
         self.description = LiveDescription(width=0, height=0, margin=0,
                                            css_classes=["map-description"],
@@ -160,7 +160,7 @@ class LoadView(pn.viewable.Viewer):
         self.csv = ResultDownload(lambda: load_csv(self.results.load), "load_curves.csv",
                                   "load", results=self.results, name="load",
                                   label="Load curves CSV")
-        self.svg = svg_button(["load"], css="load-svg")
+        self.svg = svg_button("load-svg")
         self.description = LiveDescription(width=0, height=0, margin=0,
                                            css_classes=["load-description"],
                                            describes=figure_classes(self.figure))

@@ -17,6 +17,12 @@ screen width.
 * **PageUp/PageDown on a slider** move it by a tenth of its range (rounded to its step),
   whatever its arrow-key step; noUiSlider's own page step is 5 arrow steps and cannot be
   changed after Bokeh creates it.
+* **"Figure (SVG)" buttons** (``app.views.export.svg_button``, CSS class
+  ``SVG_BUTTON_CLASS``): a click saves the button's figures (``svg_exports``, by the
+  button's ``export-<css>`` class) through the server's page code
+  (``window.mp_export_svg``, ``app/edge.py``); without it, the reader is pointed to the
+  toolbar's save tool. Answered here, in the click itself: the browser allows the
+  downloads it starts.
 * **Narrow screens.** ``narrow`` is True when the page is first shown on a screen
   narrower than ``NARROW_PX`` (a phone): the page folds its controls away there.
 """
@@ -31,9 +37,18 @@ NARROW_PX = 700
 #: one entry per state the reader stopped at, not one per key press of a drag.
 SETTLE_MS = 400
 
+#: The "Figure (SVG)" buttons (``app.views.export.svg_button``), by their CSS class
+#: (``export-<css>``): the figures each saves, by their Bokeh ``name`` (none: every figure
+#: on screen).
+SVG_EXPORTS = {"page-svg": (), "map-svg": ("regime_map",), "load-svg": ("load",),
+               "array-svg": ("array_top", "array_live_panel")}
+#: The CSS class that marks a "Figure (SVG)" button for the page's code.
+SVG_BUTTON_CLASS = "svg-export"
+
 
 class PageBehaviour(JSComponent):
-    """Browser-side behaviour of the page (address bar, history, slider page keys)."""
+    """Browser-side behaviour of the page (address bar, history, slider page keys,
+    SVG buttons)."""
 
     search = param.String(default="", doc="the state's URL search string, '?k_r=...'")
     replace_search = param.String(default="", doc="a search string that replaces the current "
@@ -45,6 +60,9 @@ class PageBehaviour(JSComponent):
     narrow = param.Boolean(default=False, doc="first shown on a screen < NARROW_PX wide")
     page_fraction = param.Number(default=0.1, bounds=(0.01, 1.0),
                                  doc="PageUp/PageDown move a slider by this part of its range")
+    svg_exports = param.Dict(default={f"export-{css}": list(names)
+                                      for css, names in SVG_EXPORTS.items()}, constant=True,
+                             doc="the figures each SVG button saves, by its CSS class")
 
     _esm = """
     function sliderOf(path) {
@@ -87,6 +105,19 @@ class PageBehaviour(JSComponent):
         slider.value = value;
         if ("value_throttled" in slider) slider.value_throttled = value;
       };
+      const onClick = (event) => {
+        // A "Figure (SVG)" button: its host carries SVG_CLASS and its export-<css> class.
+        const path = event.composedPath();
+        if (!path.some((el) => el.tagName === "BUTTON")) return;
+        const host = path.find((el) => el.classList && el.classList.contains("SVG_CLASS"));
+        const table = model.svg_exports;  // an object, or a Map as BokehJS may decode it
+        const names = (c) => (table instanceof Map ? table.get(c) : table[c]);
+        const key = host && [...host.classList].find((c) => names(c) !== undefined);
+        if (!key) return;
+        if (typeof window.mp_export_svg === "function")
+          window.mp_export_svg([...names(key)], "");
+        else alert("Save a figure with the save tool of its toolbar.");
+      };
       const write = (search, replace) => {
         if (!search || search === window.location.search) return;
         // Written before the server saw the latest Back/Forward: it would overwrite the
@@ -108,6 +139,7 @@ class PageBehaviour(JSComponent):
       const replace = () => { clearTimeout(settling); write(model.replace_search, true); };
       window.addEventListener("popstate", onPop);
       window.addEventListener("keydown", onKey, true);
+      window.addEventListener("click", onClick);
       for (const kind of ["keydown", "pointerdown", "pointerup"])
         window.addEventListener(kind, onInput, true);
       model.on("search", push);
@@ -115,10 +147,12 @@ class PageBehaviour(JSComponent):
       model.on("remove", () => {
         window.removeEventListener("popstate", onPop);
         window.removeEventListener("keydown", onKey, true);
+        window.removeEventListener("click", onClick);
         for (const kind of ["keydown", "pointerdown", "pointerup"])
           window.removeEventListener(kind, onInput, true);
       });
       model.narrow = window.innerWidth < NARROW;
       write(model.search, true);  // the address as the page reads it, with no new entry
     }
-    """.replace("NARROW", str(NARROW_PX)).replace("SETTLE_MS", str(SETTLE_MS))
+    """.replace("NARROW", str(NARROW_PX)).replace("SETTLE_MS", str(SETTLE_MS)) \
+        .replace("SVG_CLASS", SVG_BUTTON_CLASS)

@@ -11,6 +11,7 @@ import param
 
 from ..results import SessionResults
 from ..state import ExplorerState
+from .browser import SVG_BUTTON_CLASS, SVG_EXPORTS
 from .layout import BUTTON_CSS
 from .widgets import caption, look
 
@@ -137,21 +138,20 @@ class ResultDownload(pn.viewable.Viewer):
         return pn.Column(self.compute, self.download, sizing_mode="stretch_width", margin=0)
 
 
-#: A figure's SVG is exported by its drawn BokehJS view: the server's page code
-#: (``app/edge.py``, on the tested stack) offers that as ``window.mp_export_svg``;
-#: without it the button points to the toolbar's save tool.
-SVG_JS = """
-if (typeof window.mp_export_svg === "function") window.mp_export_svg(names, prefix);
-else alert("Save a figure with the save tool of its toolbar.");
-"""
+def svg_button(css: str, label: str = "Figure (SVG)"):
+    """A button that saves the figures ``SVG_EXPORTS[css]`` that are on screen as
+    ``<name>.svg``, in the browser: no server round trip.
 
-
-def svg_button(names=(), prefix: str = "", label: str = "Figure (SVG)", css: str = "svg"):
-    """A button that saves the figures ``names`` (those on screen; none named: every
-    figure on screen) as ``prefix<name>.svg``, in the browser: no server round trip."""
-    button = pn.widgets.Button(**caption(label), **look("light"), margin=(2, 3),
-                               sizing_mode="stretch_width", css_classes=[f"export-{css}"],
-                               stylesheets=[BUTTON_CSS],
-                               description="saves the figure as a vector graphic (SVG)")
-    button.js_on_click(args={"names": list(names), "prefix": prefix}, code=SVG_JS)
-    return button
+    The click is answered by the page's own code (``app.views.browser.PageBehaviour``,
+    which finds the button by its classes): a Panel ``js_on_click`` would register a
+    Panel ``Callback``, and from then on every layout update of every page in the
+    process walks the page's whole model graph looking for links (~10 % of a page's
+    build, ``benchmarks/bench_page_steps.py``)."""
+    if css not in SVG_EXPORTS:
+        raise ValueError(f"css={css!r}: an SVG button is one of {sorted(SVG_EXPORTS)} "
+                         "(add its figures to app.views.browser.SVG_EXPORTS)")
+    return pn.widgets.Button(**caption(label), **look("light"), margin=(2, 3),
+                             sizing_mode="stretch_width",
+                             css_classes=[f"export-{css}", SVG_BUTTON_CLASS],
+                             stylesheets=[BUTTON_CSS],
+                             description="saves the figure as a vector graphic (SVG)")

@@ -124,7 +124,7 @@ class Dashboard(pn.viewable.Viewer):
             pn.pane.Markdown("**Download** (CSV; the figures on screen as SVG)",
                              margin=(4, 10, 0, 10)),
             pn.Row(*self.downloads, sizing_mode="stretch_width"),
-            svg_button(label="Figures on screen (SVG)", css="page-svg"),
+            svg_button("page-svg", label="Figures on screen (SVG)"),
             offline_button(state),
             pn.pane.Markdown("**Animation of the support** (for slides)",
                              margin=(4, 10, 0, 10)),

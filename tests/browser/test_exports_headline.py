@@ -51,6 +51,25 @@ def test_the_map_downloads_as_csv_and_svg(page, page_log, app_url):
     assert page_log.errors == [], page_log.errors
 
 
+def test_the_sidebar_svg_button_saves_each_figure_on_screen(page, page_log, app_url):
+    """The sidebar's SVG button, answered by the page's own code (``PageBehaviour``):
+    one file per figure of the tab on show, none of a tab not shown."""
+    pt.wait_for_app(page, f"{app_url}?tab=support")
+    for name in ("scene", "forces"):
+        pt.wait_for_plot(page, name)
+    saved: list = []
+    page.on("download", lambda download: saved.append(download))
+    pt.click_button(page, r"^Figures on screen \(SVG\)$")
+    pt.wait_for(page, lambda: {"scene.svg", "forces.svg", "friction_law.svg"}
+                <= {d.suggested_filename for d in saved}, timeout_s=30,
+                what=lambda: f"the figures saved: {[d.suggested_filename for d in saved]}")
+    page.wait_for_timeout(500)  # any other file would have started by now
+    names = sorted(d.suggested_filename for d in saved)
+    assert len(names) == len(set(names)) and "regime_map.svg" not in names, names
+    assert all("<svg" in open(d.path(), encoding="utf-8").read()[:300] for d in saved)
+    assert page_log.errors == [], page_log.errors
+
+
 def test_the_polar_csv_waits_for_its_sweep(page, page_log, app_url):
     pt.wait_for_app(page, f"{app_url}?tab=support&k_r=0.7")
     compute = page.get_by_role("button", name="Compute polar sweep CSV")
