@@ -18,6 +18,7 @@ import panel as pn
 from bokeh.settings import settings
 
 from app.edge import install
+from app.heap import page_built
 from app.jobs import start_warm_up
 from app.opening import admit_or_busy, rehearse
 
@@ -55,5 +56,6 @@ def on_server_loaded(server_context):
         return
     try:
         log.info("the dashboard rehearsed in %.2f s", rehearse())
+        page_built()  # what start-up made lives as long as the server (app.heap)
     except Exception:  # the pages will say what fails; the server still serves them
         log.exception("the dashboard could not be rehearsed")

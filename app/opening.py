@@ -36,6 +36,7 @@ import panel as pn
 from bokeh.models import CustomJS
 
 from .edge import guard_markup_views
+from .heap import page_built
 from .pages import page_gate
 from .slot import client_address
 from .trace import mark
@@ -206,6 +207,7 @@ def _attach(doc, shell, page) -> None:
             shell.objects = [page]
         if rest is None:
             mark("page sent")
+            page_built()
             return
         mark("page first part sent")
         doc.add_timeout_callback(lambda: _attach_rest(doc, rest), STEP_GAP_MS)
@@ -219,6 +221,7 @@ def _attach_rest(doc, rest) -> None:
         with pn.io.hold(doc):
             rest()
         mark("page sent")
+        page_built()
     except Exception:
         log.exception("the dashboard could not be shown")
 
