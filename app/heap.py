@@ -14,28 +14,20 @@ So, with Python's public ``gc.freeze``:
 * ``page_built()``: once a page is built and sent, everything alive is frozen (moved to
   the permanent generation, which collections do not traverse): later collections look
   only at what was made since.
-* ``session_ended()``: when pages close, their objects must be collectable again (their
-  reference cycles are freed only by a collection): ``SETTLE_S`` after the last page
-  closed, everything is unfrozen, collected once, and what lives is frozen again. Panel
-  already collects after sessions end (the same full collection, debounced 5 s); this
-  one takes its place, and Panel's then finds only what was made since.
-
-Without a running event loop (tests, scripts, notebooks) ``session_ended`` settles at once.
+* ``settle()``: closed pages' objects must be collectable again (their reference cycles
+  are freed only by a collection): everything is unfrozen, collected once, and what
+  lives is frozen again. The server does it once pages have stopped closing for a few
+  seconds (``app.pages.release_memory``, before it hands the freed memory back), in
+  place of the full collection it made there before; Panel's own collection after
+  sessions end then finds only what was made since.
 """
 from __future__ import annotations
 
-import asyncio
 import gc
 import logging
 import time
 
 log = logging.getLogger(__name__)
-
-#: Seconds after the last page closed before the heap is collected: pages of a class
-#: close over some seconds; one collection for all of them.
-SETTLE_S = 3.0
-
-_pending: asyncio.TimerHandle | None = None
 
 
 def page_built() -> None:
@@ -46,8 +38,6 @@ def page_built() -> None:
 def settle() -> float:
     """Unfreeze, collect once (the closed pages' reference cycles), freeze what lives;
     the seconds the collection took."""
-    global _pending
-    _pending = None
     start = time.perf_counter()
     gc.unfreeze()
     gc.collect()
@@ -55,16 +45,3 @@ def settle() -> float:
     took = time.perf_counter() - start
     log.debug("heap settled in %.3f s, %d objects frozen", took, gc.get_freeze_count())
     return took
-
-
-def session_ended(*_context) -> None:
-    """A page closed: settle the heap ``SETTLE_S`` after the last of a run of closes."""
-    global _pending
-    try:
-        loop = asyncio.get_running_loop()
-    except RuntimeError:  # no event loop: at once
-        settle()
-        return
-    if _pending is not None:
-        _pending.cancel()
-    _pending = loop.call_later(SETTLE_S, settle)

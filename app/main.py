@@ -13,7 +13,6 @@ nothing.
 """
 import panel as pn
 
-from app.heap import session_ended
 from app.opening import BUSY_TITLE, TITLE, build_when_opened, busy_page, loading_shell
 from app.page_template import use_page_template
 from app.pages import page_gate, schedule_release, sessions_of
@@ -35,7 +34,7 @@ def serve() -> None:
         # running is its answer; whether the dashboard builds, app.healthcheck checks
         # with a real session.
         return
-    page_id, release, count, ended = id(doc), schedule_release, sessions_of, session_ended
+    page_id, release, count = id(doc), schedule_release, sessions_of
     if doc is not None and not gate.admit(client, page_id):
         busy_page(doc).servable(title=BUSY_TITLE, location=False)
         return
@@ -43,7 +42,7 @@ def serve() -> None:
     if doc is not None:
         pn.state.onload(lambda: gate.opened(client, page_id))
         doc.on_session_destroyed(
-            lambda context: (gate.gone(client, page_id), release(count(context)), ended()))
+            lambda context: (gate.gone(client, page_id), release(count(context))))
     build_when_opened(shell, Dashboard.from_session, doc)
     shell.servable(title=TITLE, location=False)
     if doc is not None:

@@ -6,9 +6,10 @@ Per server process, like the work pool (``app.jobs``): ``page_gate()`` is the on
 from __future__ import annotations
 
 import ctypes
-import gc
 import threading
 import time
+
+from .heap import settle
 
 #: Pages of one client requested but not yet opened by a browser (its document_ready)
 #: that a new page may join; past it the client gets a short "busy" page instead. Each
@@ -125,7 +126,8 @@ _RELEASE_LOCK = threading.Lock()
 
 
 def release_memory(sessions_open=None) -> dict:
-    """Collect garbage and hand the heap's free pages back to the system (glibc's
+    """Collect garbage (``app.heap.settle``: the open pages' objects are frozen out of
+    the automatic collections) and hand the heap's free pages back to the system (glibc's
     ``malloc_trim``; elsewhere a no-op): CPython's allocator otherwise keeps the memory
     of ended sessions for reuse, and the server stays at its peak after a class left.
 
@@ -144,7 +146,7 @@ def release_memory(sessions_open=None) -> dict:
             pool.cache.shrink()
             done["cache_bytes"] = pool.cache.nbytes
             done["recycled"] = pool.recycle_workers()
-    gc.collect()
+    settle()  # the closed pages' objects collected (app.heap)
     try:
         ctypes.CDLL(None).malloc_trim(0)
     except (OSError, AttributeError):  # not glibc

@@ -1,14 +1,15 @@
 """The server's heap (app/heap.py): a built page's objects are frozen out of Python's
-automatic collections, and a closed page's reference cycles are still freed."""
+automatic collections, and a closed page's reference cycles are still freed once pages
+stop closing (``app.pages.release_memory``)."""
 from __future__ import annotations
 
-import asyncio
 import gc
 import weakref
 
 import pytest
 
 from app import heap
+from app.pages import release_memory
 
 
 class _Node:
@@ -43,25 +44,13 @@ def test_a_closed_pages_cycles_are_freed_though_they_were_frozen():
     heap.page_built()
     gc.collect()
     assert ref() is not None  # frozen: no collection alone frees it
-    heap.session_ended()  # no event loop here: the heap settles at once
+    heap.settle()
     assert ref() is None
     assert gc.get_freeze_count() > 0  # what lives is frozen again
 
 
-def test_closes_in_a_run_settle_the_heap_once_after_the_last(monkeypatch):
-    monkeypatch.setattr(heap, "SETTLE_S", 0.05)
-    settled = []
-    real = heap.settle
-    monkeypatch.setattr(heap, "settle", lambda: settled.append(real()))
-
-    async def run():
-        ref = _page_in_a_cycle()
-        heap.page_built()
-        for _ in range(3):  # a class leaving
-            heap.session_ended()
-            await asyncio.sleep(0.01)
-        assert ref() is not None and settled == []  # not while pages still close
-        await asyncio.sleep(0.2)
-        assert ref() is None
-    asyncio.run(run())
-    assert len(settled) == 1
+def test_the_memory_released_after_pages_closed_includes_frozen_pages():
+    ref = _page_in_a_cycle()
+    heap.page_built()
+    release_memory(None)
+    assert ref() is None
