@@ -19,7 +19,7 @@ So, with Python's public ``gc.freeze``:
   lives is frozen again. The server does it once pages have stopped closing for a few
   seconds (``app.pages.release_memory``, before it hands the freed memory back), in
   place of the full collection it made there before; Panel's own collection after
-  sessions end then finds only what was made since.
+  sessions end looks only at what was made since the last freeze.
 """
 from __future__ import annotations
 
