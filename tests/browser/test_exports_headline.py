@@ -58,12 +58,18 @@ def test_the_sidebar_svg_button_saves_each_figure_on_screen(page, page_log, app_
     for name in ("scene", "forces"):
         pt.wait_for_plot(page, name)
     saved: list = []
-    page.on("download", lambda download: saved.append(download))
-    pt.click_button(page, r"^Figures on screen \(SVG\)$")
-    pt.wait_for(page, lambda: {"scene.svg", "forces.svg", "friction_law.svg"}
-                <= {d.suggested_filename for d in saved}, timeout_s=30,
-                what=lambda: f"the figures saved: {[d.suggested_filename for d in saved]}")
-    page.wait_for_timeout(500)  # any other file would have started by now
+
+    def on_download(download):
+        saved.append(download)
+    page.on("download", on_download)  # the page is shared by the module's tests
+    try:
+        pt.click_button(page, r"^Figures on screen \(SVG\)$")
+        pt.wait_for(page, lambda: {"scene.svg", "forces.svg", "friction_law.svg"}
+                    <= {d.suggested_filename for d in saved}, timeout_s=30,
+                    what=lambda: f"the figures saved: {[d.suggested_filename for d in saved]}")
+        page.wait_for_timeout(500)  # any other file would have started by now
+    finally:
+        page.remove_listener("download", on_download)
     names = sorted(d.suggested_filename for d in saved)
     assert len(names) == len(set(names)) and "regime_map.svg" not in names, names
     assert all("<svg" in open(d.path(), encoding="utf-8").read()[:300] for d in saved)
