@@ -11,9 +11,11 @@ seconds. So:
   ``document_ready``; ``build_when_opened``) over three turns of the event loop: its
   Python objects, then their models in two messages (``pn.io.hold``), the support tab's
   views in the second (``Dashboard.in_two_parts``; a page opened on another tab in one).
-  Other requests are
-  answered between the turns, and a page that is never opened (a script fetching URLs)
-  costs the light page only;
+  Other requests are answered between the turns, and a page that is never opened (a
+  script fetching URLs) costs the light page only;
+* pages opened together are **built one at a time, whole**, the first opened first,
+  clients in turn (``LANE``, ``app.page_lane``): their steps no longer take turns, so the
+  first visitor's page is not held until the last one's is done;
 * the dashboard is **built once when the server starts** (``rehearse``), in a document
   no browser gets: a process's first page cost twice what the next ones did (one-time
   work of Panel and Bokeh), and that first page was a visitor's or the health check's;
@@ -30,6 +32,7 @@ import html
 import logging
 import time
 from pathlib import Path
+from typing import Iterator
 from urllib.parse import urlencode
 
 import panel as pn
@@ -37,6 +40,7 @@ from bokeh.models import CustomJS
 
 from .edge import guard_markup_views
 from .heap import page_built
+from .page_lane import PageLane
 from .pages import page_gate
 from .slot import client_address
 from .trace import mark
@@ -136,7 +140,8 @@ def build_when_opened(shell, make, doc=None) -> None:
         return
     answer_each_event_in_one_message()
     guard_markup_views(doc)
-    pn.state.onload(lambda: _build(doc, shell, make))
+    pn.state.onload(lambda: LANE.add(doc, build_steps(doc, shell, make),
+                                     client=client_address()))
 
 
 _HOLDS: list = []
@@ -183,7 +188,15 @@ def answer_each_event_in_one_message() -> None:
 STEP_GAP_MS = 10
 
 
-def _build(doc, shell, make) -> None:
+#: The server's pages are built one at a time, the first opened first, clients in turn.
+LANE = PageLane(STEP_GAP_MS)
+
+
+def build_steps(doc, shell, make) -> Iterator[None]:
+    """The steps of a page's build, one per ``next()`` (``LANE``): its Python objects; its
+    models and their message (``pn.io.hold``); the rest of its models, when the page
+    can be split (``Dashboard.in_two_parts``). A page that cannot be built says so in
+    its place."""
     mark("page build starts")
     try:
         page = make()
@@ -193,33 +206,19 @@ def _build(doc, shell, make) -> None:
                                        css_classes=["page-failed"])]
         return
     mark("page objects built")
-    doc.add_timeout_callback(lambda: _attach(doc, shell, page), STEP_GAP_MS)
-
-
-def _attach(doc, shell, page) -> None:
-    """The page's models, sent as one message; or as two, ``STEP_GAP_MS`` apart, when
-    the page can be split (``Dashboard.in_two_parts``)."""
+    yield
     try:
         mark("page models start")
         split = getattr(page, "in_two_parts", None)
         rest = split() if split is not None else None
         with pn.io.hold(doc):
             shell.objects = [page]
-        if rest is None:
-            mark("page sent")
-            page_built()
-            return
-        mark("page first part sent")
-        doc.add_timeout_callback(lambda: _attach_rest(doc, rest), STEP_GAP_MS)
-    except Exception:
-        log.exception("the dashboard could not be shown")
-
-
-def _attach_rest(doc, rest) -> None:
-    try:
-        mark("page rest starts")
-        with pn.io.hold(doc):
-            rest()
+        if rest is not None:
+            mark("page first part sent")
+            yield
+            mark("page rest starts")
+            with pn.io.hold(doc):
+                rest()
         mark("page sent")
         page_built()
     except Exception:

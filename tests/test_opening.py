@@ -10,7 +10,7 @@ import urllib.parse
 import panel as pn
 import pytest
 
-from app.opening import (AUTO_RELOAD_JS, BACK_JS, BUSY_FILE, BUSY_HTML, BUSY_TITLE, _build,
+from app.opening import (AUTO_RELOAD_JS, BACK_JS, BUSY_FILE, BUSY_HTML, BUSY_TITLE, build_steps,
                          admit_or_busy, busy_address, build_when_opened, loading_shell)
 from app.pages import PageGate
 
@@ -20,7 +20,7 @@ def test_a_page_that_cannot_be_built_says_so_in_place(caplog):
         raise RuntimeError("broken")
     shell = loading_shell()
     with caplog.at_level(logging.ERROR, logger="app.opening"):
-        _build(None, shell, make)
+        assert list(build_steps(None, shell, make)) == []  # no step after the failed one
     [alert] = shell.objects
     assert "page-failed" in alert.css_classes and "could not be built" in alert.object
     assert "broken" in caplog.text
