@@ -121,9 +121,32 @@ def loading_shell():
     """The light page a request gets: the dashboard takes its place once opened."""
     return pn.Column(
         pn.Row(pn.indicators.LoadingSpinner(value=True, size=28, margin=(4, 10)),
-               pn.pane.HTML(f"<b>{OPENING_TEXT}</b>", margin=(10, 0))),
+               pn.pane.HTML(opening_html(), margin=(10, 0), css_classes=["opening-text"])),
         sizing_mode="stretch_both", margin=0, css_classes=["page-shell"],
         stylesheets=[SHELL_CSS])
+
+
+def opening_html(ahead: int = 0, seconds: float | None = None) -> str:
+    """The light page's text: opening; with ``ahead`` pages to be built before it (a
+    class opening the link together, ``LANE``), how many and about how long."""
+    text = f"<b>{OPENING_TEXT}</b>"
+    if ahead > 0:
+        pages = "1 other page" if ahead == 1 else f"{ahead} other pages"
+        text += f" The server is building {pages} first"
+        text += f" (about {max(1, round(seconds))} s)." if seconds is not None else "."
+    return f'<span role="status">{text}</span>'
+
+
+def _tell_waiting(doc, shell, ahead: int, seconds: float | None) -> None:
+    """Show a waiting page's place in the lane (a change of its light page, made on its
+    own document's next turn)."""
+    text = opening_html(ahead, seconds)
+
+    def write():
+        for pane in shell.select(pn.pane.HTML):
+            if "opening-text" in pane.css_classes:
+                pane.object = text
+    doc.add_next_tick_callback(write)
 
 
 def build_when_opened(shell, make, doc=None) -> None:
@@ -140,8 +163,9 @@ def build_when_opened(shell, make, doc=None) -> None:
         return
     answer_each_event_in_one_message()
     guard_markup_views(doc)
-    pn.state.onload(lambda: LANE.add(doc, build_steps(doc, shell, make),
-                                     client=client_address()))
+    pn.state.onload(lambda: LANE.add(
+        doc, build_steps(doc, shell, make), client=client_address(),
+        note=lambda ahead, seconds: _tell_waiting(doc, shell, ahead, seconds)))
 
 
 _HOLDS: list = []

@@ -14,83 +14,139 @@ not hold up another's one. The server process has one lane (``app.opening.LANE``
 of the page being built runs ``gap_ms`` after the previous step of any page, on that
 page's document (its lock held, as Bokeh runs a session's callbacks). A page whose session
 ends leaves the lane; a step that raises ends its page's build (the step itself shows the
-visitor what went wrong).
+visitor what went wrong). A waiting page is told how many pages will be built before it
+and about how long that takes (``note``), so a visitor knows the page is coming and does
+not reload it (a reloaded page goes to the end of the lane).
 """
 from __future__ import annotations
 
 import logging
+import statistics
+import time
 from collections import deque
-from typing import Hashable, Iterator
+from typing import Callable, Hashable, Iterator
 
 log = logging.getLogger(__name__)
 
 _DONE = object()
 
 
+class _Page:
+    __slots__ = ("doc", "steps", "client", "note", "told", "started")
+
+    def __init__(self, doc, steps, client, note):
+        self.doc, self.steps, self.client, self.note = doc, steps, client, note
+        self.told = None      # the number of pages ahead it was last told
+        self.started = None   # time.monotonic() when its build started
+
+
+def _turn(waiting: dict, last):
+    """The client whose page is built next: the first in turn other than ``last``."""
+    return next((c for c in waiting if c != last), last)
+
+
 class PageLane:
     """Builds pages' steps one at a time: a page whole, then the oldest page of the next
     client in turn.
 
-    ``add(doc, steps, client)``: each ``next(steps)`` runs one step of the page of
+    ``add(doc, steps, client, note)``: each ``next(steps)`` runs one step of the page of
     ``doc`` (a generator that yields between steps); ``client`` is the visitor's address
-    (None: one anonymous client)."""
+    (None: one anonymous client); ``note(ahead, seconds)``, if given, is called while the
+    page waits, each time the number of pages to be built before it changes, with the
+    seconds that will take (from the latest builds; None before any)."""
+
+    #: Builds whose seconds make the waiting pages' estimate (the median of the latest).
+    RECENT = 5
 
     def __init__(self, gap_ms: int):
         self.gap_ms = gap_ms
         #: client -> its pages not started, oldest first; clients in turn, next first.
         self._waiting: dict[Hashable, deque] = {}
-        self._current = None      # [doc, steps, client] of the page being built
+        self._current: _Page | None = None  # the page being built
         self._scheduled = False   # whether its next step waits for its timer
         self._last = None         # the client of the page built last
+        self._seconds: deque = deque(maxlen=self.RECENT)  # the latest pages' builds
 
     def __len__(self) -> int:
         return sum(map(len, self._waiting.values())) + (self._current is not None)
 
-    def add(self, doc, steps: Iterator[None], client: Hashable = None) -> None:
-        entry = [doc, steps, client]
-        self._waiting.setdefault(client, deque()).append(entry)
-        doc.on_session_destroyed(lambda _context: self._leave(entry))
+    def add(self, doc, steps: Iterator[None], client: Hashable = None,
+            note: Callable[[int, float | None], None] | None = None) -> None:
+        page = _Page(doc, steps, client, note)
+        self._waiting.setdefault(client, deque()).append(page)
+        doc.on_session_destroyed(lambda _context: self._leave(page))
         self._next()
+
+    def order(self) -> list:
+        """The documents of the pages waiting, in the order they will be built."""
+        return [page.doc for page in self._order()]
+
+    def _order(self) -> list[_Page]:
+        waiting = {client: deque(pages) for client, pages in self._waiting.items()}
+        last, order = self._last, []
+        while waiting:
+            last = _turn(waiting, last)
+            pages = waiting.pop(last)
+            order.append(pages.popleft())
+            if pages:
+                waiting[last] = pages
+        return order
 
     def _next(self) -> None:
         while not self._scheduled and (self._current is not None or self._waiting):
             if self._current is None:
-                client = next((c for c in self._waiting if c != self._last), self._last)
-                self._last = client
+                self._last = client = _turn(self._waiting, self._last)
                 pages = self._waiting.pop(client)
                 self._current = pages.popleft()
+                self._current.started = time.monotonic()
                 if pages:  # the client's next page waits for its next turn
                     self._waiting[client] = pages
-            entry = self._current
+            page = self._current
             try:
-                entry[0].add_timeout_callback(lambda: self._step(entry), self.gap_ms)
+                page.doc.add_timeout_callback(lambda: self._step(page), self.gap_ms)
                 self._scheduled = True
             except Exception:  # noqa: BLE001 - the session has ended meanwhile
                 log.debug("a page left the lane before its next step")
                 self._current = None
+        self._tell()
 
-    def _step(self, entry) -> None:
-        if entry is not self._current:  # the page left the lane meanwhile
+    def _step(self, page: _Page) -> None:
+        if page is not self._current:  # the page left the lane meanwhile
             return
         self._scheduled = False
         try:
-            more = next(entry[1], _DONE) is not _DONE
+            more = next(page.steps, _DONE) is not _DONE
         except Exception:  # noqa: BLE001 - logged; the lane goes on with the next page
             log.exception("a step of a page's build failed")
             more = False
         if not more:
             self._current = None
+            self._seconds.append(time.monotonic() - page.started)
         self._next()
 
-    def _leave(self, entry) -> None:
+    def _tell(self) -> None:
+        """Tell each waiting page how many pages will be built before it, and how long
+        that should take, when the number has changed."""
+        each = statistics.median(self._seconds) if self._seconds else None
+        for i, page in enumerate(self._order(), start=self._current is not None):
+            if page.note is None or page.told == i:
+                continue
+            page.told = i
+            try:
+                page.note(i, None if each is None else i * each)
+            except Exception:  # noqa: BLE001 - a note is not worth stopping the lane for
+                log.debug("a waiting page could not be told its place", exc_info=True)
+
+    def _leave(self, page: _Page) -> None:
         """The page's session ended: its build stops; if it was being built (a timer of
         a session that ended never fires), the next page's step is scheduled."""
-        if entry is self._current:
+        if page is self._current:
             self._current, self._scheduled = None, False
             self._next()
             return
-        pages = self._waiting.get(entry[2])
-        if pages is not None and entry in pages:
-            pages.remove(entry)
+        pages = self._waiting.get(page.client)
+        if pages is not None and page in pages:
+            pages.remove(page)
             if not pages:
-                del self._waiting[entry[2]]
+                del self._waiting[page.client]
+            self._tell()

@@ -240,3 +240,31 @@ def test_a_page_opened_on_another_tab_is_sent_whole(pool):
     from app.views import Dashboard
 
     assert Dashboard(ExplorerState(tab="array")).in_two_parts() is None
+
+
+def test_the_light_page_says_how_many_pages_are_built_before_it():
+    from app.opening import opening_html
+
+    assert "Opening the explorer" in opening_html() and "other page" not in opening_html()
+    assert "building 1 other page first." in opening_html(1, None)
+    assert "building 12 other pages first (about 20 s)." in opening_html(12, 19.6)
+    assert "(about 1 s)" in opening_html(1, 0.2)  # never "about 0 s"
+    assert opening_html(3, 4.0).startswith('<span role="status">')
+
+
+def test_a_waiting_page_shows_its_place_on_its_own_documents_next_turn():
+    from app.opening import _tell_waiting, opening_html
+
+    class Doc:
+        ticks = []
+
+        def add_next_tick_callback(self, callback):
+            self.ticks.append(callback)
+
+    shell, doc = loading_shell(), Doc()
+    _tell_waiting(doc, shell, 4, 7.0)
+    [text] = [p for p in shell.select(pn.pane.HTML) if "opening-text" in p.css_classes]
+    assert text.object == opening_html()  # nothing changed outside the document's turn
+    [tick] = doc.ticks
+    tick()
+    assert text.object == opening_html(4, 7.0)

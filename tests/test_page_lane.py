@@ -133,3 +133,45 @@ def test_a_page_already_ended_when_its_step_is_due_is_skipped():
     loop.run()
     assert loop.log == ["B1"]
     assert len(lane) == 0
+
+
+def test_a_waiting_page_is_told_how_many_pages_come_first_and_about_how_long():
+    loop = Loop()
+    lane = PageLane(gap_ms=10)
+    a, b, c = (Doc(loop, n) for n in "ABC")
+    told = {"A": [], "B": [], "C": []}
+    for doc in (a, b, c):
+        lane.add(doc, steps(doc, n=2), note=lambda ahead, s, n=doc.name: told[n].append((ahead, s)))
+    assert told["A"] == []  # built at once: nothing to wait for
+    assert told["B"] == [(1, None)] and told["C"] == [(2, None)]  # no build timed yet
+    loop.run()
+    assert [ahead for ahead, _ in told["C"]] == [2, 1]  # told again only when it changed
+    ahead, seconds = told["C"][1]
+    assert seconds is not None and seconds > 0  # one page ahead: one build's time
+    assert told["B"] == [(1, None)]
+    assert loop.log == ["A1", "A2", "B1", "B2", "C1", "C2"]
+
+
+def test_the_order_told_is_the_order_built():
+    loop = Loop()
+    lane = PageLane(gap_ms=10)
+    docs = [Doc(loop, n) for n in ("P", "Q", "R", "S", "T")]
+    clients = ["x", "x", "x", "y", "z"]
+    for doc, client in zip(docs, clients):
+        lane.add(doc, steps(doc, n=1), client=client)
+    told = [d.name for d in lane.order()]
+    loop.run()
+    assert ["P"] + told == [name[0] for name in loop.log]
+    assert told == ["S", "Q", "T", "R"]  # clients in turn: y, then x again, z, x
+
+
+def test_a_page_leaving_the_lane_moves_the_ones_behind_it_up():
+    loop = Loop()
+    lane = PageLane(gap_ms=10)
+    a, b, c = (Doc(loop, n) for n in "ABC")
+    told = []
+    lane.add(a, steps(a))
+    lane.add(b, steps(b))
+    lane.add(c, steps(c), note=lambda ahead, s: told.append(ahead))
+    b.destroy()
+    assert told == [2, 1]

@@ -139,8 +139,9 @@ def test_an_opened_page_arrives_in_two_parts_the_support_views_second(served):
 
 
 #: Run in ``benchmarks/``: three pages requested and pulled together, their browsers
-#: saying "rendered" together; print, for each in the order it said so, when it said so
-#: and when each message with the dashboard's models arrived (seconds), as JSON.
+#: saying "rendered" together; print, for each in the order it said so, when it said so,
+#: when each message with the dashboard's models arrived and when each telling it the
+#: pages to be built before it did (seconds), as JSON.
 _OPEN_TOGETHER = """
 import asyncio, json, sys, time
 import load_client as lc
@@ -148,15 +149,19 @@ import load_client as lc
 async def main(base, n):
     sessions = [lc.Session(i, base) for i in range(n)]
     pulled, ready_at, parts = asyncio.Event(), {}, {i: [] for i in range(n)}
+    notes = {i: [] for i in range(n)}
 
     def watch(session):
         read, flush = session._read, session._flush
 
         async def reading():
             message = await read()
-            if message is not None and message.msgtype == "PATCH-DOC" \\
-                    and json.dumps(message.content).count('"type": "object"') >= 50:
-                parts[session.index].append(time.perf_counter())
+            if message is not None and message.msgtype == "PATCH-DOC":
+                text = json.dumps(message.content)
+                if text.count('"type": "object"') >= 50:
+                    parts[session.index].append(time.perf_counter())
+                elif "other page" in text:  # told its place while it waits
+                    notes[session.index].append(time.perf_counter())
             return message
 
         async def flushing():  # the first flush says "rendered": all at once
@@ -173,7 +178,7 @@ async def main(base, n):
     for session in sessions:
         session.socket.close()
     order = sorted(range(n), key=lambda i: ready_at[i])
-    print(json.dumps([[ready_at[i], parts[i]] for i in order]))
+    print(json.dumps([[ready_at[i], parts[i], notes[i]] for i in order]))
 
 asyncio.run(main(sys.argv[1], int(sys.argv[2])))
 """
@@ -182,14 +187,18 @@ asyncio.run(main(sys.argv[1], int(sys.argv[2])))
 def test_pages_opened_together_arrive_one_after_another_the_first_opened_first(served):
     """``app.page_lane``: three visitors whose pages open at the same moment get them one
     after another, whole, in the order they opened; not all three at the end, as when the
-    pages' steps took turns on the server's loop."""
+    pages' steps took turns on the server's loop. A page waiting is told how many pages
+    will be built before it."""
     base, _log = served
     done = subprocess.run([sys.executable, "-c", _OPEN_TOGETHER, base, "3"],
                           cwd=ROOT / "benchmarks", capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr[-3000:]
     pages = json.loads(done.stdout.strip().splitlines()[-1])
-    assert all(len(parts) == 2 for _ready, parts in pages), pages
+    assert all(len(parts) == 2 for _ready, parts, _notes in pages), pages
     # Every browser had said so before the first page's models came: built together.
-    assert max(ready for ready, _parts in pages) < pages[0][1][0], pages
-    for (_, earlier), (_, later) in zip(pages, pages[1:]):
+    assert max(ready for ready, _parts, _notes in pages) < pages[0][1][0], pages
+    for (_, earlier, _n), (_, later, _m) in zip(pages, pages[1:]):
         assert earlier[-1] < later[0], pages  # the earlier page whole before the later's
+    # The first page is built at once; the last waits, told so ("2 other pages", then 1).
+    assert pages[0][2] == [] and len(pages[-1][2]) == 2, pages
+    assert max(pages[-1][2]) < pages[-1][1][0], pages
