@@ -191,6 +191,18 @@ def test_a_sweep_on_a_broken_disk_cache_computes_with_one_warning(
     assert [p for p in leftovers if p.is_file()] == []  # no entries, no temporary files
 
 
+def _run_timeouts(doc, rounds: int = 20) -> None:
+    """Run ``doc``'s one-shot timers (and those they add) as a server's loop would."""
+    from bokeh.server.callbacks import TimeoutCallback
+
+    for _ in range(rounds):
+        due = [cb for cb in doc.session_callbacks if isinstance(cb, TimeoutCallback)]
+        if not due:
+            return
+        for cb in due:
+            cb.callback()
+
+
 def test_a_second_copy_of_the_app_shares_the_workers(monkeypatch):
     """The page script run by a second handler of the app (as ``panel serve`` with several
     app paths, or an autoreload, does) builds its pages on the same worker processes as
@@ -202,8 +214,12 @@ def test_a_second_copy_of_the_app_shares_the_workers(monkeypatch):
     from bokeh.document import Document
     from bokeh.server.contexts import BokehSessionContext
 
+    from app import opening
+    from app.page_lane import PageLane
     from app.views import Dashboard
 
+    # A lane of this test's own: without a server no timer fires but the ones run here.
+    monkeypatch.setattr(opening, "LANE", PageLane(opening.STEP_GAP_MS))
     app_dir = Path(jobs.__file__).parent
     pool = jobs.work_pool()
     built = []
@@ -223,7 +239,8 @@ def test_a_second_copy_of_the_app_shares_the_workers(monkeypatch):
         doc._session_context = weakref.ref(context)
         handler.modify_document(doc)
         assert not handler.failed, handler.error
-        pn.state._on_load(doc)  # the browser has the page: the dashboard is built now
+        pn.state._on_load(doc)  # the browser has the page: the dashboard is built now,
+        _run_timeouts(doc)      # in the steps the server's loop would run
     assert len(built) == 2  # the page was built twice ...
     assert jobs.work_pool() is pool  # ... on one pool of workers
     assert {name: pool.executor(name) for name in jobs.LANES} == executors
