@@ -40,9 +40,16 @@ class _Page:
         self.started = None   # time.monotonic() when its build started
 
 
-def _turn(waiting: dict, last):
-    """The client whose page is built next: the first in turn other than ``last``."""
-    return next((c for c in waiting if c != last), last)
+def _take(waiting: dict, last) -> _Page:
+    """Remove from ``waiting`` the page built next and return it: the oldest page of the
+    first client in turn other than ``last`` (the client of the page built before), whose
+    next page then waits for the client's next turn."""
+    client = next((c for c in waiting if c != last), last)
+    pages = waiting.pop(client)
+    page = pages.popleft()
+    if pages:
+        waiting[client] = pages
+    return page
 
 
 class PageLane:
@@ -83,24 +90,16 @@ class PageLane:
 
     def _order(self) -> list[_Page]:
         waiting = {client: deque(pages) for client, pages in self._waiting.items()}
-        last, order = self._last, []
+        order = []
         while waiting:
-            last = _turn(waiting, last)
-            pages = waiting.pop(last)
-            order.append(pages.popleft())
-            if pages:
-                waiting[last] = pages
+            order.append(_take(waiting, order[-1].client if order else self._last))
         return order
 
     def _next(self) -> None:
         while not self._scheduled and (self._current is not None or self._waiting):
             if self._current is None:
-                self._last = client = _turn(self._waiting, self._last)
-                pages = self._waiting.pop(client)
-                self._current = pages.popleft()
-                self._current.started = time.monotonic()
-                if pages:  # the client's next page waits for its next turn
-                    self._waiting[client] = pages
+                self._current = _take(self._waiting, self._last)
+                self._last, self._current.started = self._current.client, time.monotonic()
             page = self._current
             try:
                 page.doc.add_timeout_callback(lambda: self._step(page), self.gap_ms)

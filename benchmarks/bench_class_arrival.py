@@ -125,15 +125,15 @@ def run(urls: list[str], pages: int, rounds: int, chromium: bool = False) -> dic
     report = {"pages": pages, "rounds": rounds, "chromium": chromium,
               "load_average": {"start": load0, "end": loadavg()}, "servers": {}}
     for url, rows in runs.items():
-        opens = np.concatenate([r["open_s"] for r in rows]) if rows else np.zeros(0)
+        opens = np.concatenate([r["open_s"] for r in rows])
+        firsts = np.concatenate([r["first_plot_s"] for r in rows])  # none in --chromium
         report["servers"][url] = {
             "open_p50_s": float(np.percentile(opens, 50)),
             "open_p95_s": float(np.percentile(opens, 95)),
             "open_max_s": float(opens.max()),
             "round_median_open_s": spread(float(np.median(r["open_s"])) for r in rows),
             "round_max_open_s": spread(max(r["open_s"]) for r in rows),
-            "first_plot_p50_s": float(np.percentile(firsts, 50)) if (firsts := np.concatenate(
-                [r["first_plot_s"] for r in rows])).size else None,
+            "first_plot_p50_s": float(np.percentile(firsts, 50)) if firsts.size else None,
             "rounds": rows, "errors": [e for r in rows for e in r["errors"]]}
     return report
 
