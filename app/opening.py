@@ -244,6 +244,9 @@ def build_steps(doc, shell, make) -> Iterator[None]:
             with pn.io.hold(doc):
                 rest()
         mark("page sent")
+        sent = getattr(page, "sent", None)
+        if sent is not None:
+            sent(doc)
         page_built()
     except Exception:
         log.exception("the dashboard could not be shown")

@@ -139,6 +139,11 @@ class Controls(pn.viewable.Viewer):
             f"**A**: k_r = {a['k_r']:.3g}, k_θ = {a['k_theta']:.3g}, F_N = {a['F_N']:.3g}, "
             f"θ₀ = {a['theta0']:g}° (dashed, grey)")
 
+    @property
+    def sliders(self) -> list:
+        """The physics' sliders (Panel widgets), each with its own ``ctl-`` CSS class."""
+        return [self.theta0, self.k_r.widget, self.k_theta.widget, self.F_N.widget]
+
     def _mark_preset(self, *_events) -> None:
         """Draw the preset of the current springs solid, the others as outlines (the
         buttons are restyled only when the preset matched changes, not at every move)."""

@@ -31,6 +31,7 @@ from .browser import PageBehaviour
 from .export import ResultDownload, svg_button
 from .offline_download import offline_button
 from .code import CodeView
+from .at_once import answer_at_once
 from .controls import Controls
 from .design import DesignView
 from .equations import EquationsView
@@ -321,6 +322,11 @@ class Dashboard(pn.viewable.Viewer):
         tag = f"kr{s.k_r:.3g}_kt{s.k_theta:.3g}_FN{s.F_N:.3g}"
         self.downloads[0].filename = f"trajectory_{tag}_theta0_{s.theta0:g}.csv"
         self.downloads[1].download.filename = f"polar_{tag}.csv"
+
+    def sent(self, doc) -> None:
+        """The page's models are in ``doc`` and on their way: a slider moved in the
+        browser reaches the state as its message arrives (``app.views.at_once``)."""
+        answer_at_once(doc, self.controls.sliders)
 
     def in_two_parts(self) -> Callable[[], None] | None:
         """Leave the One-support tab's views and the root's CSS class (``DASHBOARD_CLASS``)

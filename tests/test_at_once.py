@@ -1,0 +1,111 @@
+"""``app.views.at_once``: a slider moved in the browser reaches the session's state as the
+browser's message is applied, not when Panel hands the change on 50 ms later."""
+from __future__ import annotations
+
+import logging
+import math
+import threading
+from types import SimpleNamespace
+
+import panel as pn
+import pytest
+from bokeh.document import Document
+from bokeh.models import Slider
+from panel.io.state import set_curdoc
+
+
+def _served_page(pool):
+    """The dashboard's models in a document as a server's session has it (Bokeh keeps its
+    session context behind a weak reference: a callable), with ``Dashboard.sent`` called
+    as the page's build does once its models are on their way."""
+    from app.state import ExplorerState
+    from app.views import Dashboard
+
+    request = SimpleNamespace(arguments={}, headers={}, cookies={})
+    doc, context = Document(), SimpleNamespace(id="a served session", request=request)
+    doc._session_context = lambda: context
+    with set_curdoc(doc):
+        pn.state._thread_id = threading.get_ident()  # the event loop's thread, for Panel
+        page = Dashboard(ExplorerState())
+        doc.add_root(pn.panel(page).get_root(doc))
+        page.sent(doc)
+    return doc, page
+
+
+def _slider(doc, css: str) -> Slider:
+    [model] = [m for m in doc.select({"type": Slider}) if css in m.css_classes]
+    return model
+
+
+def _from_browser(doc, model, value) -> None:
+    """What Bokeh's server does with the browser's message moving ``model``."""
+    with set_curdoc(doc):
+        model.set_from_json("value", value, setter=object())
+
+
+def test_a_slider_moved_in_the_browser_changes_the_state_at_once(pool):
+    doc, page = _served_page(pool)
+    assert page.state.theta0 != 42
+    _from_browser(doc, _slider(doc, "ctl-theta0"), 42.0)
+    assert page.state.theta0 == 42  # now, not after Panel's delivery (a timer, not run here)
+    assert page.controls.theta0.value == 42
+
+
+def _panels_delivery(doc) -> None:
+    """Run what Panel scheduled for the changes from the browser (its 50 ms timer)."""
+    import asyncio
+    import inspect
+
+    for callback in list(doc.session_callbacks):
+        if getattr(callback, "timeout", None):
+            doc.remove_timeout_callback(callback)
+            with set_curdoc(doc):
+                result = callback.callback()
+                if inspect.isawaitable(result):
+                    asyncio.run(result)
+
+
+def test_a_drags_next_positions_are_merged_by_panel_and_the_last_arrives(pool):
+    """A drag's positions sooner than ``MERGE_MS`` after the one taken at once go Panel's
+    way, merged: the server updates no more often than before, and the last one arrives."""
+    doc, page = _served_page(pool)
+    model = _slider(doc, "ctl-theta0")
+    for position in (40.0, 41.0, 42.0, 43.0):  # within a few microseconds, as in a drag
+        _from_browser(doc, model, position)
+    assert page.state.theta0 == 40  # the first at once; the rest wait for Panel
+    _panels_delivery(doc)
+    assert page.state.theta0 == 43  # the last position, not an earlier one
+
+
+def test_a_log_slider_sets_its_quantity(pool):
+    doc, page = _served_page(pool)
+    _from_browser(doc, _slider(doc, "ctl-k_r"), math.log10(0.5))
+    assert page.state.k_r == pytest.approx(0.5)
+    assert page.controls.k_r.widget.value == pytest.approx(math.log10(0.5))
+
+
+def test_every_physics_slider_is_found(pool):
+    from app.views.at_once import answer_at_once
+
+    doc, page = _served_page(pool)
+    assert answer_at_once(doc, page.controls.sliders) == 4
+    assert answer_at_once(Document(), page.controls.sliders) == 0  # not in that document
+
+
+def test_a_value_the_widget_refuses_leaves_the_state_and_says_so(pool, caplog):
+    doc, page = _served_page(pool)
+    before = page.state.theta0
+    with caplog.at_level(logging.WARNING, logger="app.views.at_once"):
+        _from_browser(doc, _slider(doc, "ctl-theta0"), 1e6)  # beyond the slider's 359°
+    assert page.state.theta0 == before
+    assert "ctl-theta0" in caplog.text and "1000000" in caplog.text
+
+
+def test_canary_panel_hands_a_browser_change_on_50_ms_late():
+    """The wait this module removes (``docs/upstream/widget_change_debounce.py``): the day
+    Panel hands a browser's change to its widget at once, ``app.views.at_once`` can go."""
+    import runpy
+    from pathlib import Path
+
+    script = Path(__file__).parents[1] / "docs" / "upstream" / "widget_change_debounce.py"
+    assert runpy.run_path(str(script))["main"]() is True
