@@ -38,11 +38,14 @@ class SliderMoves:
     def _readout_shows(self, degrees: float) -> bool:
         return f"θ₀ = {degrees:g}°" in (self.readout.html or "")
 
-    async def _set(self, name: str, value: float) -> float:
-        """Move the slider; when its message had left (``time.perf_counter``)."""
+    async def _set(self, name: str, value: float, end: bool = True) -> float:
+        """Move the slider; when its message had left (``time.perf_counter``). As BokehJS:
+        a key press or a drag's end (``end``) sets ``value`` and ``value_throttled``, a
+        drag's position on the way ``value`` alone."""
         slider = self.sliders[name]
         slider.value = value
-        slider.set_from_json("value_throttled", value)  # read-only in Python, as BokehJS sets it
+        if end:  # read-only in Python: set as BokehJS sets it
+            slider.set_from_json("value_throttled", value)
         await self._flush()
         return time.perf_counter()
 
@@ -84,12 +87,13 @@ class SliderMoves:
         # A drag ends elsewhere than where it began: the server may merge a quick drag's
         # positions, and one that ends where it began changes nothing (and sends nothing).
         began = self.sliders[name].value
-        for step in range(DRAG_STEPS if drag else 1):
+        steps = DRAG_STEPS if drag else 1
+        for step in range(steps):
             if step:
                 await asyncio.sleep(DRAG_GAP_S)
             value = self._position(name, avoid=(began,))
             sent, pushes = time.perf_counter(), self.orbit_pushes
-            wrote = await self._set(name, value)
+            wrote = await self._set(name, value, end=step == steps - 1)
 
         def done() -> bool:
             return self._arrived(name, value, pushes)

@@ -11,7 +11,8 @@ asyncio loop of this process: it loads the page over HTTP (``GET /app``: the ser
 builds the session's document and embeds its token, as for a browser), opens the
 session's websocket with that token, pulls the document (Bokeh's ``PULL-DOC``) into a
 local replica and then behaves like a page: a slider move is the ``PATCH-DOC`` message
-BokehJS sends (the slider model's ``value`` and ``value_throttled``), and every
+BokehJS sends (the slider model's ``value`` and ``value_throttled`` for a key press or a
+drag's end, ``value`` alone for a drag's positions on the way), and every
 ``PATCH-DOC`` the server pushes is applied to the replica. So the server does all the
 work it does for a browser: it builds the page, runs the widget callbacks, queues the
 model work in its worker processes, serialises the new plot data and pushes it over

@@ -37,10 +37,15 @@ def _slider(doc, css: str) -> Slider:
     return model
 
 
-def _from_browser(doc, model, value) -> None:
-    """What Bokeh's server does with the browser's message moving ``model``."""
+def _from_browser(doc, model, value, end: bool = True) -> None:
+    """What Bokeh's server does with the browser's message moving ``model``: a key press or
+    a drag's end sets ``value`` and ``value_throttled`` (BokehJS), a drag's position
+    (``end=False``) ``value`` alone."""
+    setter = object()
     with set_curdoc(doc):
-        model.set_from_json("value", value, setter=object())
+        model.set_from_json("value", value, setter=setter)
+        if end:
+            model.set_from_json("value_throttled", value, setter=setter)
 
 
 def test_a_slider_moved_in_the_browser_changes_the_state_at_once(pool):
@@ -65,16 +70,31 @@ def _panels_delivery(doc) -> None:
                     asyncio.run(result)
 
 
-def test_a_drags_next_positions_are_merged_by_panel_and_the_last_arrives(pool):
-    """A drag's positions sooner than ``MERGE_MS`` after the one taken at once go Panel's
-    way, merged: the server updates no more often than before, and the last one arrives."""
+def test_a_drag_goes_panels_way_and_its_end_is_taken_at_once(pool):
+    """A drag's positions are merged by Panel as before (no update added); its end (the
+    release) is taken at once."""
     doc, page = _served_page(pool)
     model = _slider(doc, "ctl-theta0")
-    for position in (40.0, 41.0, 42.0, 43.0):  # within a few microseconds, as in a drag
-        _from_browser(doc, model, position)
-    assert page.state.theta0 == 40  # the first at once; the rest wait for Panel
+    start = page.state.theta0
+    for position in (40.0, 41.0, 42.0):
+        _from_browser(doc, model, position, end=False)
+    assert page.state.theta0 == start  # the positions wait for Panel, merged
+    _from_browser(doc, model, 43.0)  # released there
+    assert page.state.theta0 == 43
     _panels_delivery(doc)
-    assert page.state.theta0 == 43  # the last position, not an earlier one
+    assert page.state.theta0 == 43 and page.controls.theta0.value == 43
+
+
+def test_presses_sooner_than_merge_ms_go_panels_way_and_the_last_arrives(pool):
+    """A key held down: the first press at once, the next ones (within ``MERGE_MS``)
+    merged by Panel, so the server updates no more often than before."""
+    doc, page = _served_page(pool)
+    model = _slider(doc, "ctl-theta0")
+    for position in (40.0, 41.0, 42.0):  # within microseconds of one another
+        _from_browser(doc, model, position)
+    assert page.state.theta0 == 40
+    _panels_delivery(doc)
+    assert page.state.theta0 == 42  # the last press, not an earlier one
 
 
 def test_a_log_slider_sets_its_quantity(pool):

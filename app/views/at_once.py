@@ -6,9 +6,10 @@ so each key press on a slider waited 50 ms before its computation could start: a
 that is not work. Bokeh calls a model's Python ``on_change`` callbacks as the browser's
 message is applied; the callback here sets the widget's value there and then, and the
 widget's own links carry it on (to the state, and from there to the results). When
-Panel's own delivery comes, it finds the value already set and changes nothing. A drag's
-next positions, sooner than ``MERGE_MS`` after one taken, are left to Panel, which merges
-them as before: a drag costs the server no more updates than it did.
+Panel's own delivery comes, it finds the value already set and changes nothing. Only a
+key press or a drag's end is taken so (BokehJS's ``value_throttled``): a drag's positions
+are left to Panel, which merges them as before, so a drag costs the server no more updates
+than it did, and its end is taken at once too.
 
 Public API only: Bokeh's ``Document.select`` and ``Model.on_change``, Panel's
 ``pn.io.hold`` (what the change sets off leaves in one message). A control whose model
@@ -29,16 +30,16 @@ from ..trace import mark
 log = logging.getLogger(__name__)
 
 
-#: A change that comes sooner than this after the last one taken at once (a drag's next
-#: position) is left to Panel, which merges what arrives within its debounce: a drag costs
-#: the server no more updates than before, and its last position always arrives (ms).
+#: A press that comes sooner than this after the last one taken at once (a key held down)
+#: is left to Panel, which merges what arrives within its debounce (ms).
 MERGE_MS = 50
 
 
 def answer_at_once(doc, widgets) -> int:
-    """Let a browser's change of each slider in ``widgets`` (Panel sliders, each with a
-    CSS class of its own first, e.g. ``ctl-theta0``) reach the widget as its message
-    arrives. ``doc`` holds the page's models. Returns how many sliders were found."""
+    """Let a browser's key press or drag's end on each slider in ``widgets`` (Panel
+    sliders, each with a CSS class of its own first, e.g. ``ctl-theta0``) reach the
+    widget as its message arrives. ``doc`` holds the page's models. Returns how many
+    sliders were found."""
     by_class = {}
     for model in doc.select({"type": Slider}):
         for css in model.css_classes:
@@ -47,15 +48,17 @@ def answer_at_once(doc, widgets) -> int:
     for widget in widgets:
         models = by_class.get(widget.css_classes[0], []) if widget.css_classes else []
         for model in models:
-            model.on_change("value", AtOnce(doc, widget))
+            model.on_change("value_throttled", AtOnce(doc, widget))
         found += bool(models)
     return found
 
 
 class AtOnce:
-    """Bokeh's callback for one slider's model: a new value from the browser becomes the
-    widget's now, what it changes in one message; within ``MERGE_MS`` of the last one
-    taken, Panel's own delivery carries it (the latest value, merged)."""
+    """Bokeh's callback for one slider's model. BokehJS sets ``value_throttled`` (with
+    ``value``) for a key press and at the end of a drag, never during one: that value
+    becomes the widget's now, what it changes in one message. A drag's positions
+    (``value`` alone) and presses within ``MERGE_MS`` of the last one taken go Panel's
+    way, merged as before: no update is added, and the last position always arrives."""
 
     def __init__(self, doc, widget):
         self.doc, self.widget = doc, widget
@@ -63,7 +66,7 @@ class AtOnce:
 
     def __call__(self, _attr, _old, new) -> None:
         now = time.monotonic()
-        if new == self.widget.value or now - self.taken_at < MERGE_MS / 1e3:
+        if new is None or new == self.widget.value or now - self.taken_at < MERGE_MS / 1e3:
             return
         self.taken_at = now
         mark("server receives")
