@@ -71,7 +71,8 @@ def test_a_move_or_a_drag_never_ends_where_the_slider_already_was(lc):
 
 def test_in_the_drags_profile_every_move_is_a_theta0_drag(lc):
     """``--profiles class,drags``: each move drags theta0 over ``DRAG_STEPS`` positions and
-    is timed from its last one, so a last position that never reaches the page is seen."""
+    is timed from its last one, so a last position that never reaches the page is seen; only
+    the last is sent as a drag's end."""
     import asyncio
 
     from bokeh.models import Slider
@@ -81,8 +82,8 @@ def test_in_the_drags_profile_every_move_is_a_theta0_drag(lc):
                        for name in ("theta0", "k_r", "k_theta", "F_N")}
     sent = []
 
-    async def set_slider(name, value):
-        sent.append(name)
+    async def set_slider(name, value, end=True):
+        sent.append((name, end))
         session.sliders[name].value = value
         return 0.0
 
@@ -94,5 +95,7 @@ def test_in_the_drags_profile_every_move_is_a_theta0_drag(lc):
             await session.move(only_drags=True)
     asyncio.run(moves())
     assert "drags" in lc.PROFILES
-    assert sent == ["theta0"] * (5 * lc.DRAG_STEPS)
+    # As BokehJS: a drag's positions on the way without ``value_throttled``, its end with it.
+    one_drag = [("theta0", False)] * (lc.DRAG_STEPS - 1) + [("theta0", True)]
+    assert sent == one_drag * 5
     assert len(session.drag_latencies) == 5 and session.latencies == []
