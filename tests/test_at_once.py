@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import logging
 import math
-import threading
-from types import SimpleNamespace
 
 import panel as pn
 import pytest
@@ -15,17 +13,14 @@ from panel.io.state import set_curdoc
 
 
 def _served_page(pool):
-    """The dashboard's models in a document as a server's session has it (Bokeh keeps its
-    session context behind a weak reference: a callable), with ``Dashboard.sent`` called
-    as the page's build does once its models are on their way."""
+    """The dashboard's models in a served session's document, with ``Dashboard.sent``
+    called as the page's build does once its models are on their way."""
     from app.state import ExplorerState
     from app.views import Dashboard
+    from fakes import served_document
 
-    request = SimpleNamespace(arguments={}, headers={}, cookies={})
-    doc, context = Document(), SimpleNamespace(id="a served session", request=request)
-    doc._session_context = lambda: context
+    doc = served_document()
     with set_curdoc(doc):
-        pn.state._thread_id = threading.get_ident()  # the event loop's thread, for Panel
         page = Dashboard(ExplorerState())
         doc.add_root(pn.panel(page).get_root(doc))
         page.sent(doc)
@@ -48,14 +43,6 @@ def _from_browser(doc, model, value, end: bool = True) -> None:
             model.set_from_json("value_throttled", value, setter=setter)
 
 
-def test_a_slider_moved_in_the_browser_changes_the_state_at_once(pool):
-    doc, page = _served_page(pool)
-    assert page.state.theta0 != 42
-    _from_browser(doc, _slider(doc, "ctl-theta0"), 42.0)
-    assert page.state.theta0 == 42  # now, not after Panel's delivery (a timer, not run here)
-    assert page.controls.theta0.value == 42
-
-
 def _panels_delivery(doc) -> None:
     """Run what Panel scheduled for the changes from the browser (its 50 ms timer)."""
     import asyncio
@@ -68,6 +55,14 @@ def _panels_delivery(doc) -> None:
                 result = callback.callback()
                 if inspect.isawaitable(result):
                     asyncio.run(result)
+
+
+def test_a_slider_moved_in_the_browser_changes_the_state_at_once(pool):
+    doc, page = _served_page(pool)
+    assert page.state.theta0 != 42
+    _from_browser(doc, _slider(doc, "ctl-theta0"), 42.0)
+    assert page.state.theta0 == 42  # now, not after Panel's delivery (a timer, not run here)
+    assert page.controls.theta0.value == 42
 
 
 def test_a_drag_goes_panels_way_and_its_end_is_taken_at_once(pool):

@@ -176,21 +176,8 @@ def test_a_rehearsal_that_fails_leaves_the_server_serving(monkeypatch, caplog):
 
 
 def _served_doc():
-    """A document as a server's session has it (Bokeh keeps its session context behind a
-    weak reference: a callable)."""
-    from types import SimpleNamespace
-
-    from bokeh.document import Document
-
-    import threading
-
-    from panel.io.state import set_curdoc
-
-    doc, context = Document(), SimpleNamespace(id="a served session")
-    doc._session_context = lambda: context
-    with set_curdoc(doc):  # the event loop's thread, as Panel records it for a session
-        pn.state._thread_id = threading.get_ident()
-    return doc
+    from fakes import served_document
+    return served_document()
 
 
 def _busy(flag: bool) -> None:
