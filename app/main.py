@@ -43,7 +43,7 @@ def serve() -> None:
         pn.state.onload(lambda: gate.opened(client, page_id))
         doc.on_session_destroyed(
             lambda context: (gate.gone(client, page_id), release(count(context))))
-    build_when_opened(shell, Dashboard.in_steps, doc)
+    build_when_opened(shell, Dashboard.from_session, doc)
     shell.servable(title=TITLE, location=False)
     if doc is not None:
         gate.built(client, page_id)

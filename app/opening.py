@@ -8,12 +8,11 @@ seconds. So:
 
 * the request gets a **light page** (``loading_shell``: the title and a spinner, ~25 ms);
 * the **dashboard is built when a browser opens the page** (Panel's ``onload``, the page's
-  ``document_ready``; ``build_when_opened``) over seven turns of the event loop: its
-  Python objects in three (the support tab's view first: ``Dashboard.in_steps``), then
-  their models in four messages (``pn.io.hold``), the support tab's views in the second
-  and third (``Dashboard.in_parts``; a page opened on another tab in one). No turn holds
-  the loop for more than ~0.4 s here, other requests are answered between the turns, and
-  a page that is never opened (a script fetching URLs) costs the light page only;
+  ``document_ready``; ``build_when_opened``) over three turns of the event loop: its
+  Python objects, then their models in two messages (``pn.io.hold``), the support tab's
+  views in the second (``Dashboard.in_two_parts``; a page opened on another tab in one).
+  Other requests are answered between the turns, and a page that is never opened (a
+  script fetching URLs) costs the light page only;
 * pages opened together are **built one at a time, whole**, the first opened first,
   clients in turn (``LANE``, ``app.page_lane``): their steps no longer take turns, so the
   first visitor's page is not held until the last one's is done;
@@ -30,7 +29,6 @@ seconds. So:
 from __future__ import annotations
 
 import html
-import inspect
 import logging
 import time
 from pathlib import Path
@@ -154,16 +152,14 @@ def _tell_waiting(doc, shell, ahead: int, seconds: float | None) -> None:
 def build_when_opened(shell, make, doc=None) -> None:
     """Replace ``shell``'s content by the page ``make()`` builds, once a browser has it.
 
-    Call while the page is built (``doc``: its document). Once Panel's ``onload`` says
-    the browser is ready, the page joins the lane (``LANE``), which runs its steps
-    (``build_steps``) ``STEP_GAP_MS`` apart: ``make()``, the page's Python objects (the
-    results it asks for start then; a generator: in steps), then its models, under
-    ``pn.io.hold``, in one message or a message per part (``Dashboard.in_parts``), so
-    other requests are answered in between. Without a server (``doc`` None) the page is
-    built at once.
+    Call while the page is built (``doc``: its document). Panel's ``onload`` runs
+    ``make()`` (the page's Python objects; the results it asks for start then); the
+    page's models are made ``STEP_GAP_MS`` later, under ``pn.io.hold``, in one message
+    or two (``Dashboard.in_two_parts``), so other requests are answered in between.
+    Without a server (``doc`` None) the page is built at once.
     """
     if doc is None:
-        shell.objects = [made_at_once(make())]
+        shell.objects = [make()]
         return
     answer_each_event_in_one_message()
     guard_markup_views(doc)
@@ -221,25 +217,13 @@ LANE = PageLane(STEP_GAP_MS)
 
 
 def build_steps(doc, shell, make) -> Iterator[None]:
-    """The steps of a page's build, one per ``next()`` (``LANE``): its Python objects, in
-    steps when ``make()`` is a generator (``Dashboard.in_steps``); its models and
-    their message (``pn.io.hold``); the rest of its models, a message per part, when the
-    page can be split (``Dashboard.in_parts``). Each step's seconds go to the trace
-    (``page step``). A page that cannot be built says so in its place."""
+    """The steps of a page's build, one per ``next()`` (``LANE``): its Python objects; its
+    models and their message (``pn.io.hold``); the rest of its models, when the page
+    can be split (``Dashboard.in_two_parts``). A page that cannot be built says so in
+    its place."""
     mark("page build starts")
-    clock = _StepClock()
     try:
-        made = make()
-        if inspect.isgenerator(made):  # None at each step's end, the page at the last
-            for number, page in enumerate(made, start=1):
-                clock.done(f"objects, part {number}")
-                if page is not None:
-                    break
-                yield
-                clock.start()
-        else:
-            page = made
-            clock.done("objects")
+        page = make()
     except Exception:
         log.exception("the dashboard could not be built")
         shell.objects = [pn.pane.Alert(FAILED_TEXT, alert_type="danger",
@@ -248,18 +232,17 @@ def build_steps(doc, shell, make) -> Iterator[None]:
     mark("page objects built")
     yield
     try:
-        clock.start()
-        split = getattr(page, "in_parts", None)
-        parts = (split() if split is not None else None) or []
+        mark("page models start")
+        split = getattr(page, "in_two_parts", None)
+        rest = split() if split is not None else None
         with pn.io.hold(doc):
             shell.objects = [page]
-        clock.done("models, part 1" if parts else "models, whole")
-        for number, part in enumerate(parts, start=2):
+        if rest is not None:
+            mark("page first part sent")
             yield
-            clock.start()
+            mark("page rest starts")
             with pn.io.hold(doc):
-                part()
-            clock.done(f"models, part {number}")
+                rest()
         mark("page sent")
         sent = getattr(page, "sent", None)
         if sent is not None:
@@ -267,26 +250,6 @@ def build_steps(doc, shell, make) -> Iterator[None]:
         page_built()
     except Exception:
         log.exception("the dashboard could not be shown")
-
-
-def made_at_once(made):
-    """The page ``make()`` gave, its steps run one after another if it gave them."""
-    if inspect.isgenerator(made):
-        *_, made = made
-    return made
-
-
-class _StepClock:
-    """Each step's seconds, to the trace (``page step``)."""
-
-    def __init__(self):
-        self.start()
-
-    def start(self) -> None:
-        self._t0 = time.perf_counter()
-
-    def done(self, step: str) -> None:
-        mark("page step", step=step, seconds=time.perf_counter() - self._t0)
 
 
 def rehearse() -> float:

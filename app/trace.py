@@ -7,8 +7,7 @@ answers it has left), ``job submitted`` (a result asked of the work pool), ``wor
 starts`` / ``worker ends`` (handed to a worker process / its result back), ``result
 applied`` / ``result sent`` (the views updated / their message left); and for a page being
 opened (``app.opening``): ``page build starts`` (the browser said it is ready), ``page
-objects built``, ``page sent``, and after each step of its build ``page step`` with the
-step's name (``step``) and its seconds on the event loop (``seconds``).
+objects built``, ``page models start`` (the next turn of the loop), ``page sent``.
 """
 from __future__ import annotations
 

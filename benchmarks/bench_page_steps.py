@@ -6,10 +6,10 @@ Starts ``panel serve app`` ``--servers`` times (``MICROPILLAR_TRACE`` set: the s
 writes a timestamp at each step of a page's build, ``app.opening``) and opens ``--pages``
 pages one after another on each, as a browser stand-in (``load_client.Session``: the page,
 its websocket, the document, ``document_ready``), until each page's first plot. Per page:
-its Python objects (in one step or two) and its models and their messages (with a page
-sent in parts, each part), as the server's trace times them (``page step``). A step is
-one callback: a request that comes meanwhile (a liveness probe, another visitor's move)
-waits for it. Also the server's start, from launching it to its
+its Python objects (``page build starts`` -> ``page objects built``) and its models and
+their messages (``page models start`` -> ``page sent``; with a page sent in two parts,
+each part). A step is one callback: a request that comes meanwhile (a liveness probe,
+another visitor's move) waits for it. Also the server's start, from launching it to its
 liveness endpoint answering (its workers warmed and the dashboard rehearsed).
 
 Prints median [min-max] of each step for the servers' first page and for the pages after
@@ -28,24 +28,31 @@ from load_client import Session
 from machine import loadavg
 from spread import cell, spread
 
-#: The steps a page's build may take, in their order (``app.opening.build_steps``): its
-#: objects in one step or two, its models in one message or several.
-STEPS = ("objects", "objects, part 1", "objects, part 2", "objects, part 3", "models, whole",
-         "models, part 1", "models, part 2", "models, part 3", "models, part 4")
+#: (name, first stage, last stage) of each step; a step whose stages are missing from a
+#: page's trace (a build in one part) is left out for that page.
+STEPS = (("objects", "page build starts", "page objects built"),
+         ("models, part 1", "page models start", "page first part sent"),
+         ("models, part 2", "page rest starts", "page sent"),
+         ("models, whole", "page models start", "page sent"))
 
 
 def page_steps(trace: list[dict]) -> list[dict]:
-    """The steps' seconds of each page in a server's trace (its ``page step`` rows), in
-    the order built."""
+    """The steps' seconds of each page in a server's trace, in the order built."""
     pages, current = [], None
     for row in trace:
         stage = row["stage"]
         if stage == "page build starts":
             current = {}
             pages.append(current)
-        elif stage == "page step" and current is not None:
-            current[row["step"]] = row["seconds"]
-    return pages
+        if current is not None and stage.startswith("page"):
+            current[stage] = row["t"]
+    out = []
+    for marks in pages:
+        got = {name: marks[b] - marks[a] for name, a, b in STEPS if a in marks and b in marks}
+        if "models, part 1" in got:
+            got.pop("models, whole")
+        out.append(got)
+    return out
 
 
 async def _open_pages(base: str, pages: int) -> None:
@@ -75,7 +82,7 @@ def run(servers: int, pages: int, out: Path) -> dict:
 
     def summary(rows):
         return {name: spread(r[name] for r in rows if name in r)
-                for name in STEPS if any(name in r for r in rows)}
+                for name, *_ in STEPS if any(name in r for r in rows)}
     report = {"servers": servers, "pages": pages,
               "load_average": {"start": load0, "end": loadavg()},
               "server_start_s": spread(starts), "first_page": summary(firsts),

@@ -118,12 +118,7 @@ def test_views_are_made_from_state_and_results_only():
         assert cls.param["state"].class_ is ExplorerState
         assert cls.param["results"].class_ is SessionResults
         signature = inspect.signature(cls.__init__)
-        # The support view may be given its own first figures, made a step earlier from
-        # the same state (``SupportView.first_figures``, a page built in steps): no data.
-        own = ["first"] if name == "SupportView" else []
-        assert list(signature.parameters) == ["self", *own, "params"], name
-        assert all(signature.parameters[p].kind is inspect.Parameter.KEYWORD_ONLY
-                   for p in own), name
+        assert list(signature.parameters) == ["self", "params"], name
 
 
 def test_views_declare_what_they_draw_from():

@@ -14,7 +14,6 @@ drop stale work.
 from __future__ import annotations
 
 import math
-from typing import Callable
 
 import panel as pn
 from bokeh.models import CustomJSTickFormatter
@@ -121,8 +120,6 @@ class Controls(pn.viewable.Viewer):
                                             styles={"font-size": "0.85em"})
         state.param.watch(self._show_pinned, "pinned")
         self._extra = list(extra)
-        self._later = False  # the extra items left for later (``in_two_parts``)
-        self._column = None  # the sidebar's column, made by __panel__
         self._mark_preset()
         self._show_pinned()
 
@@ -157,21 +154,9 @@ class Controls(pn.viewable.Viewer):
         for name, button in self.presets.items():
             button.param.update(**look("primary", "solid" if name == active else "outline"))
 
-    def in_two_parts(self) -> Callable[[], None]:
-        """Lay out the controls without the extra items (downloads, animation, code, help:
-        ~100 ms of a page's first message here) until the function returned adds them: a
-        served page's models leave in shorter messages (``Dashboard.in_parts``)."""
-        self._later = True
-
-        def rest() -> None:
-            self._later = False
-            if self._column is not None:
-                self._column.objects = [*self._column.objects, *self._extra]
-        return rest
-
     def __panel__(self):
         names = list(self.presets)
-        self._column = pn.Column(
+        return pn.Column(
             self.k_r.widget, self.k_theta.widget, self.F_N.widget, self.theta0,
             pn.pane.Markdown("**Regimes** (Fig. 6)", margin=(0, 10)),
             pn.Row(*(self.presets[n] for n in names[:2]), sizing_mode="stretch_width"),
@@ -180,6 +165,5 @@ class Controls(pn.viewable.Viewer):
             pn.pane.Markdown("**Compare** two states", margin=(4, 10, 0, 10)),
             pn.Row(self.pin, self.swap, self.clear, sizing_mode="stretch_width"),
             self.pinned_text,
-            self.advanced, *([] if self._later else self._extra),
+            self.advanced, *self._extra,
             sizing_mode="stretch_width", css_classes=["controls"])
-        return self._column

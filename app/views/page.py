@@ -13,7 +13,7 @@ history) and Back/Forward restore the state of the entry (``browser.PageBehaviou
 from __future__ import annotations
 
 import io
-from typing import Callable, Iterator
+from typing import Callable
 
 import panel as pn
 import param
@@ -79,17 +79,15 @@ class Dashboard(pn.viewable.Viewer):
 
     messages = param.List(default=[], doc="notices and errors shown at the top of the page")
 
-    def __init__(self, state: ExplorerState | None = None, *,
-                 support: SupportView | None = None, **params):
+    def __init__(self, state: ExplorerState | None = None, **params):
         super().__init__(**params)
-        state = support.state if support is not None else state or ExplorerState()
-        results = support.results if support is not None else SessionResults(state)
-        self.state, self.results = state, results
+        self.state = state = state or ExplorerState()
+        self.results = results = SessionResults(state)
         self._url_generation = 0
         self._url_pending = False  # the state changed since the address was last written
         results.param.watch(self._url_with_result, "busy")
         views = dict(state=state, results=results)
-        self.support = support or SupportView(**views)
+        self.support = SupportView(**views)
         self.readouts = ReadoutsView(**views)
         self.headline = HeadlineView(**views)
         self.behaviour = PageBehaviour(search=state.to_search(), margin=0, width=0, height=0)
@@ -154,7 +152,7 @@ class Dashboard(pn.viewable.Viewer):
         self._support_row = pn.Row(self.support, self.readouts, css_classes=["support-tab"],
                                    sizing_mode="stretch_both", margin=0,
                                    stylesheets=[SIDE_ROW_CSS])
-        self._complete = True  # see ``in_parts``
+        self._complete = True  # see ``in_two_parts``
         self.tabs = pn.Tabs(
             (TAB_TITLES[0], self._support_row),
             *((title, self._holders[tab]) for title, tab in zip(TAB_TITLES[1:], TABS[1:])),
@@ -184,24 +182,13 @@ class Dashboard(pn.viewable.Viewer):
     @classmethod
     def from_session(cls) -> "Dashboard":
         """A dashboard whose state is read from the page URL (bad values: defaults + notice)."""
-        return list(cls.in_steps())[-1]
-
-    @classmethod
-    def in_steps(cls) -> Iterator["Dashboard | None"]:
-        """``from_session`` in three steps, one per ``next()`` (``app.opening``), the last
-        giving the dashboard: the support view's scene and forces, the support view, the
-        rest (the support view is three quarters of the objects' time)."""
         state = ExplorerState()
         args = pn.state.session_args if pn.state.curdoc is not None else {}
         notices = state.load_query(args or {})
-        first = SupportView.first_figures(state)
-        yield
-        support = SupportView(state=state, results=SessionResults(state), first=first)
-        yield
-        page = cls(support=support)
+        page = cls(state)
         if notices:  # show the corrected state in the address bar once the page is up
             pn.state.onload(page._schedule_url)
-        yield page
+        return page
 
     # ------------------------------------------------------------------ tabs
     def _on_state_tab(self, event) -> None:
@@ -341,32 +328,29 @@ class Dashboard(pn.viewable.Viewer):
         browser reaches the state as its message arrives (``app.views.at_once``)."""
         answer_at_once(doc, self.controls.sliders)
 
-    def in_parts(self) -> list[Callable[[], None]] | None:
-        """Leave parts of the page out, to be added by the functions returned, in turn: a
-        served page goes in four messages (``app.opening``). Of its ~530 models: the header,
-        the controls, the other tabs' holders (~90); the readouts, the support view's scene
-        and player (~230); its other figures (~190, ``SupportView.in_two_parts``); the
-        sidebar's downloads and help (~25, ``Controls.in_two_parts``) with the root's class
-        (``DASHBOARD_CLASS``) that marks the page complete (``app.healthcheck``, the browser
-        tests). Only on the One-support tab (else None: one message): figures added to a
-        hidden tab are never laid out, and BokehJS then fails on them as other views play."""
+    def in_two_parts(self) -> Callable[[], None] | None:
+        """Leave the One-support tab's views and the root's CSS class (``DASHBOARD_CLASS``)
+        out of the page until the function returned is called: a served page is sent in
+        two messages (``app.opening``), each holding the event loop half as long.
+
+        The support tab's views are ~410 of the page's ~530 models (its figures, their
+        sources and the player); the rest (header, controls, the other tabs' holders) the
+        other ~120. The root's class marks the page complete for whoever waits for it
+        (``app.healthcheck``, the browser tests). Only for a page opened on that tab (None
+        otherwise: one message): figures added to a hidden tab are never laid out, and
+        BokehJS then fails on them ("inner_width is unset") as other views play."""
         if self.state.tab != TABS[0]:  # the One-support tab
             return None
         objects = list(self._support_row.objects)
         self._support_row.objects = []
         self._complete = False
-        support_rest = self.support.in_two_parts()
-        controls_rest = self.controls.in_two_parts()
 
-        def second() -> None:
-            self._support_row.objects = objects
-
-        def fourth() -> None:
-            controls_rest()
+        def rest() -> None:
             self._complete = True
+            self._support_row.objects = objects
             if hasattr(self, "_root"):
                 self._root.css_classes = [DASHBOARD_CLASS]
-        return [second, support_rest, fourth]
+        return rest
 
     def __panel__(self):
         header = pn.Row(

@@ -17,7 +17,6 @@ import collections
 import contextlib
 import logging
 import time
-from typing import Callable
 
 import numpy as np
 import panel as pn
@@ -63,7 +62,7 @@ class SupportView(pn.viewable.Viewer):
     state = param.ClassSelector(class_=ExplorerState, constant=True)
     results = param.ClassSelector(class_=SessionResults, constant=True)
 
-    def __init__(self, *, first: dict | None = None, **params):
+    def __init__(self, **params):
         super().__init__(**params)
         self._doc = pn.state.curdoc
         #: Off its tab, the view is redrawn when the tab is shown (not at every move).
@@ -80,8 +79,8 @@ class SupportView(pn.viewable.Viewer):
         # friction, worked out and played in the browser from these frames.
         self.frames = source("support_frames", {"v_R": np.zeros(0), "F_y": np.zeros(0)})
         self.sound_toggle = add_sound(self.player, self.frames)
-        first = first or self.first_figures(self.state)
-        self.scene, self.forces = first["scene"], first["forces"]
+        self.scene = F.scene_figure(None, p, 0, width=340, height=330)
+        self.forces = F.forces_figure(None, p, 0, width=340, height=330)
         self._mu0_label = F.annotation(self.forces, "forces_mu0_label")  # at the range's end
         self.friction = F.friction_law_figure(None, p, 0, width=340, height=225)
         self.energy_frames = source("energy_live_frames", _placeholder_energies(N_FRAMES))
@@ -224,28 +223,6 @@ class SupportView(pn.viewable.Viewer):
                 F.style(fig, projector)
             if self._layout is not None:
                 self._layout.css_classes = mode_classes(self._layout.css_classes, projector)
-
-    @staticmethod
-    def first_figures(state: ExplorerState) -> dict:
-        """The scene and the forces' history (Fig. 7), about half of the view's making,
-        made beforehand for a view built in two steps (``first=``; ``Dashboard.in_steps``)."""
-        p = state.params
-        return {"scene": F.scene_figure(None, p, 0, width=340, height=330),
-                "forces": F.forces_figure(None, p, 0, width=340, height=330)}
-
-    def in_two_parts(self) -> Callable[[], None]:
-        """Lay out the scene and the player only, until the function returned adds the
-        other figures: a served page's models leave in shorter messages
-        (``Dashboard.in_parts``). Forces, friction law and energy (~190 models) then come
-        with a message of their own."""
-        layout = self.__panel__() if self._layout is None else self._layout
-        objects = list(layout.objects)
-        scene, _, player, *_ = objects
-        layout.objects = [scene, player]
-
-        def rest() -> None:
-            layout.objects = objects
-        return rest
 
     def __panel__(self):
         scene, forces, friction, energy = self._panes
