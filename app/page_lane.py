@@ -12,7 +12,8 @@ Clients take turns as in the work pool (``app.jobs``): the next page built is th
 of the next client in turn (by address), so a client that opens many pages at once does
 not hold up another's one. The server process has one lane (``app.opening.LANE``): a step
 of the page being built runs ``gap_ms`` after the previous step of any page, on that
-page's document (its lock held, as Bokeh runs a session's callbacks). A page whose session
+page's document (its lock held, as Bokeh runs a session's callbacks; Panel's current
+document set to it, ``set_curdoc``). A page whose session
 ends leaves the lane; a step that raises ends its page's build (the step itself shows the
 visitor what went wrong). A waiting page is told how many pages will be built before it
 and about how long that takes (``note``), so a visitor knows the page is coming and does
@@ -25,6 +26,8 @@ import statistics
 import time
 from collections import deque
 from typing import Callable, Hashable, Iterator
+
+from panel.io.state import set_curdoc
 
 log = logging.getLogger(__name__)
 
@@ -114,7 +117,12 @@ class PageLane:
             return
         self._scheduled = False
         try:
-            more = next(page.steps, _DONE) is not _DONE
+            # On the page's own document: a timer runs in the context it was set in, and a
+            # page's next step is set by the step of the page built before it, whose
+            # document Panel would otherwise take for the current one (its address, its
+            # callbacks: the second of three pages opened together showed the first's θ₀).
+            with set_curdoc(page.doc):
+                more = next(page.steps, _DONE) is not _DONE
         except Exception:  # noqa: BLE001 - logged; the lane goes on with the next page
             log.exception("a step of a page's build failed")
             more = False

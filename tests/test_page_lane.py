@@ -4,6 +4,7 @@ the next. (Seen
 from a browser stand-in on the served app: tests/test_serving.py.)"""
 from __future__ import annotations
 
+import contextvars
 import logging
 
 from app.page_lane import PageLane
@@ -24,7 +25,7 @@ class Loop:
             due = min(live, key=lambda t: t[0])
             self.timers.remove(due)
             self.now = due[0]
-            due[1]()
+            due[3].run(due[1])
         assert timers, "the lane never ran dry"
 
 
@@ -38,7 +39,9 @@ class Doc:
     def add_timeout_callback(self, callback, ms: int) -> None:
         if self.destroyed:
             raise RuntimeError("session destroyed")
-        self.loop.timers.append((self.loop.now + ms / 1e3, callback, self))
+        # As asyncio does, the callback runs in the context the timer was set in.
+        self.loop.timers.append((self.loop.now + ms / 1e3, callback, self,
+                                 contextvars.copy_context()))
 
     def on_session_destroyed(self, callback) -> None:
         self._on_destroyed.append(callback)
@@ -70,6 +73,29 @@ def test_pages_opened_together_are_built_one_after_another_oldest_first():
     assert loop.log == ["A1", "A2", "A3", "B1", "B2", "B3", "C1", "C2"]
     assert len(lane) == 0
     assert round(loop.now, 6) == 0.08  # one gap before each step, none wasted
+
+
+def test_each_step_runs_on_its_own_page_s_document():
+    """A page's steps read Panel's current document (the session's address, where its
+    callbacks go). Each page joins the lane from its own ``onload`` (Panel's current
+    document set to it), but a waiting page's step is set by the step of the page before
+    it: it must still run on its own document."""
+    import panel as pn
+    from panel.io.state import set_curdoc
+
+    loop, lane = Loop(), PageLane(gap_ms=10)
+    seen = []
+
+    def recording(doc):
+        for _ in range(2):
+            seen.append((doc.name, getattr(pn.state.curdoc, "name", None)))
+            yield
+    a, b, c = (Doc(loop, n) for n in "ABC")
+    for doc in (a, b, c):
+        with set_curdoc(doc):
+            lane.add(doc, recording(doc))
+    loop.run()
+    assert seen and all(page == current for page, current in seen), seen
 
 
 def test_clients_take_turns_a_client_opening_many_pages_does_not_hold_up_another():

@@ -202,3 +202,35 @@ def test_pages_opened_together_arrive_one_after_another_the_first_opened_first(s
     # The first page is built at once; the last waits, told so ("2 other pages", then 1).
     assert pages[0][2] == [] and len(pages[-1][2]) == 2, pages
     assert max(pages[-1][2]) < pages[-1][1][0], pages
+
+
+#: Run in ``benchmarks/``: pages with different addresses opened at the same moment; print
+#: the θ₀ each page's slider shows once it is whole, in the order opened, as JSON.
+_OPEN_DIFFERENT = """
+import asyncio, json, sys
+import load_client as lc
+
+async def main(base, angles):
+    sessions = [lc.Session(i, base, query=f"?theta0_deg={a}") for i, a in enumerate(angles)]
+    await asyncio.gather(*(s.open() for s in sessions))
+    shown = [s._find("ctl-theta0").value for s in sessions]
+    for session in sessions:
+        session.socket.close()
+    print(json.dumps(shown))
+
+asyncio.run(main(sys.argv[1], [int(a) for a in sys.argv[2:]]))
+"""
+
+
+def test_pages_opened_together_each_show_their_own_address(served):
+    """Pages waiting in the lane are built from their own session (its address, its
+    document), not from the page built before them: three links with different angles,
+    opened at once, show their three angles (``app.page_lane``)."""
+    base, log = served
+    angles = [10, 20, 30]
+    done = subprocess.run([sys.executable, "-c", _OPEN_DIFFERENT, base, *map(str, angles)],
+                          cwd=ROOT / "benchmarks", capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert json.loads(done.stdout.strip().splitlines()[-1]) == angles, done.stdout[-500:]
+    text = log.read_text(encoding="utf-8", errors="replace")
+    assert "Traceback" not in text, text[-3000:]
