@@ -10,6 +10,8 @@
 * The serving edge's guards (``app.edge``: security headers, queued writes) are installed
   on the tested stack; on another one the server says so in one line.
 * Bokeh's expensive error diagnostics are off in the server (``quiet_diagnostics``).
+* Panel's default design, its parameters worked out once per component type and page
+  instead of at every property update (``app.steady_design``).
 """
 import logging
 import os
@@ -21,6 +23,7 @@ from app.edge import install
 from app.heap import page_built
 from app.jobs import start_warm_up
 from app.opening import admit_or_busy, rehearse
+from app.steady_design import use_steady_design
 
 
 log = logging.getLogger(__name__)
@@ -51,6 +54,7 @@ def on_server_loaded(server_context):
     if quiet_diagnostics():
         log.info("Bokeh's error diagnostics off (set %s=true to keep them)", DIAGNOSTICS_ENV)
     pn.config.authorize_callback = admit_or_busy
+    use_steady_design()
     install()
     if start_warm_up():  # the solver compiles in the background: no results to show yet
         return

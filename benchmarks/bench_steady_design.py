@@ -1,0 +1,146 @@
+"""What Panel's design parameters, worked out at every property update, cost the dashboard's
+server: a page build and a slider move with Panel's ``Native`` design (its default) and
+with ``app.steady_design.SteadyNative`` (the served dashboard's, which works them out once
+per component type and page; ``docs/upstream/design_params_per_update.py``).
+
+    python benchmarks/bench_steady_design.py [--rounds 3] [--moves 30] [--quick] [--out DIR]
+
+As ``bench_diagnostics.py``: the dashboard built in a Bokeh document as the server builds
+it (``bench_messages.dashboard_page``), random moves of the four sliders (seeded, the same
+in every round), their results applied (the first round computes them all, the measured
+rounds read the cache); each round builds and moves once with each design, in alternating
+order. Measured: this process's CPU time for the build and for each move (the pool's
+workers not counted), and the calls of ``Design.params`` that worked the parameters out
+(``Design._get_modifiers``) per move. Median [min-max]: over the rounds for the build, over
+all moves for a move. Bokeh's error diagnostics are off, as in the served dashboard.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import sys
+import time
+from pathlib import Path
+
+from bench_diagnostics import _moves, _session
+from bench_messages import dashboard_page
+from spread import spread
+
+#: The two designs compared: Panel's default (``pn.config.design`` unset) and the app's.
+DESIGNS = ("native", "steady")
+
+
+class _WorkedOut:
+    """Counts the design parameters worked out (``Design._get_modifiers``)."""
+
+    def __init__(self):
+        from panel.theme.base import Design
+
+        self.count, self._cls = 0, Design
+        self._own = Design.__dict__["_get_modifiers"]
+
+    def __enter__(self):
+        own = self._own.__func__
+
+        def counted(cls, *args, **kwargs):
+            self.count += 1
+            return own(cls, *args, **kwargs)
+        self._cls._get_modifiers = classmethod(counted)
+        return self
+
+    def __exit__(self, *exc):
+        self._cls._get_modifiers = self._own
+
+
+def _use(design: str) -> None:
+    import panel as pn
+
+    from app.steady_design import SteadyNative
+
+    pn.config.design = SteadyNative if design == "steady" else None
+
+
+def _round(design: str, sequence: list) -> dict:
+    _use(design)
+    return _session(sequence)
+
+
+def run(rounds: int = 3, moves: int = 30, seed: int = 5) -> dict:
+    import panel as pn
+    from bokeh.settings import settings
+
+    from app.jobs import work_pool
+
+    sequence = _moves(moves, seed)
+    found = {d: [] for d in DESIGNS}
+    per_move = {}
+    try:
+        settings.perform_error_diagnostics.set_value(False)
+        _use("native")
+        _session(sequence)  # every result computed once: the measured rounds read the cache
+        for design in DESIGNS:  # the design parameters worked out by the moves alone
+            _use(design)
+            _doc, page = dashboard_page()
+            with _WorkedOut() as worked:
+                for name, value in sequence:
+                    page.state.param.update(**{name: value})
+            per_move[design] = worked.count / len(sequence)
+        for i in range(rounds):
+            for design in (DESIGNS if i % 2 == 0 else DESIGNS[::-1]):
+                found[design].append(_round(design, sequence))
+    finally:
+        settings.perform_error_diagnostics.unset_value()
+        pn.config.design = None
+        work_pool().shutdown()
+
+    def summary(runs, design):
+        return {"build_s": spread(r["build_s"] for r in runs),
+                "move_ms": spread(t for r in runs for t in r["move_ms"]),
+                "worked_out_per_move": per_move[design]}
+    return {"rounds": rounds, "moves": moves,
+            **{d: summary(found[d], d) for d in DESIGNS},
+            "machine": f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores",
+            "load_average": os.getloadavg()[0], "date": time.strftime("%Y-%m-%d %H:%M")}
+
+
+def text(found: dict) -> str:
+    def f(s, unit, digits=2):
+        return f"{s['median']:.{digits}f} [{s['min']:.{digits}f}-{s['max']:.{digits}f}] {unit}"
+    lines = [f"Panel's Native design and SteadyNative, {found['rounds']} rounds of a page build "
+             f"and {found['moves']} slider moves each ({found['date']}, {found['machine']}, "
+             f"load {found['load_average']:.1f}); this process's CPU, median [min-max]:"]
+    for design in DESIGNS:
+        s = found[design]
+        lines.append(f"  {design:6s}: build {f(s['build_s'], 's')}, move {f(s['move_ms'], 'ms')}, "
+                     f"design parameters worked out {s['worked_out_per_move']:.1f} per move")
+    return "\n".join(lines)
+
+
+#: The sizes of ``--quick`` (for CI): one round of a few moves.
+QUICK = {"rounds": 1, "moves": 4}
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--rounds", type=int, default=3, help="rounds, each design once (3)")
+    ap.add_argument("--moves", type=int, default=30, help="slider moves per page (30)")
+    ap.add_argument("--quick", action="store_true",
+                    help=f"{QUICK['rounds']} round of {QUICK['moves']} moves (for CI)")
+    ap.add_argument("--out", default="bench-out", help="output folder (default bench-out)")
+    args = ap.parse_args(argv)
+    sizes = dict(QUICK) if args.quick else {"rounds": args.rounds, "moves": args.moves}
+    for name, value in sizes.items():
+        if value < 1:
+            ap.error(f"--{name} {value}: give at least 1")
+    found = run(**sizes)
+    path = Path(args.out) / "bench_steady_design.json"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(found, indent=1))
+    print(text(found))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
