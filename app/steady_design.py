@@ -42,6 +42,8 @@ class SteadyNative(Native):
 
     def __init__(self, **params):
         super().__init__(**params)
+        # Per page, held no longer than the page: a session's end detaches its models
+        # (Bokeh's ``Document.destroy``), the stylesheet models kept here let go of it.
         self._found: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
     def params(self, viewable, doc=None):

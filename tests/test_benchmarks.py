@@ -361,6 +361,23 @@ def test_diagnostics_benchmark_measures_both_settings(tmp_path):
 
 
 @pytest.mark.slow
+def test_steady_design_benchmark_measures_both_designs(tmp_path):
+    """``bench_steady_design.py``: a page build and slider moves with Panel's design and the
+    served dashboard's, each figure with its spread; only Panel's works its design out at a
+    move."""
+    out = _run("bench_steady_design.py", tmp_path)
+    found = json.loads((tmp_path / "bench_steady_design.json").read_text())
+    assert found["rounds"] == 1 and found["moves"] == 4
+    for design in ("native", "steady"):
+        for key in ("build_s", "move_ms"):
+            s = found[design][key]
+            assert _spread_ok(s["min"], s["median"], s["max"]), (design, key, s)
+    assert found["native"]["worked_out_per_move"] >= 1, found["native"]
+    assert found["steady"]["worked_out_per_move"] == 0, found["steady"]
+    assert "native:" in out and "steady:" in out
+
+
+@pytest.mark.slow
 def test_worker_start_benchmark_measures_both_ways(tmp_path):
     """``bench_worker_start.py``: a lane's new workers answering, forked by the server's fork
     server (its own first round apart) and spawned, each figure with its spread."""

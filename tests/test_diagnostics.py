@@ -37,12 +37,15 @@ def test_a_setting_in_the_environment_wins(restored, value):
 
 
 def test_the_server_hook_applies_it_first(monkeypatch):
+    import panel as pn
+
     import app.app_hooks as hooks
 
     calls = []
     monkeypatch.setattr(hooks, "quiet_diagnostics", lambda: calls.append("quiet") or True)
     monkeypatch.setattr(hooks, "install", lambda *args: calls.append("install"))
     monkeypatch.setattr(hooks, "start_warm_up", lambda: True)
+    monkeypatch.setattr(pn.config, "design", None)  # set by the hook
     hooks.on_server_loaded(None)
     assert calls == ["quiet", "install"]
 

@@ -96,6 +96,7 @@ def test_the_server_hooks_set_the_busy_gate_as_panels_authorize_callback(monkeyp
     monkeypatch.setattr(hooks, "install", lambda: True)
     monkeypatch.setattr(hooks, "quiet_diagnostics", lambda: False)  # Bokeh's global setting
     monkeypatch.setattr(pn.config, "authorize_callback", None)
+    monkeypatch.setattr(pn.config, "design", None)  # set by the hook
     hooks.on_server_loaded(None)
     assert pn.config.authorize_callback is admit_or_busy
 
@@ -170,6 +171,7 @@ def test_a_rehearsal_that_fails_leaves_the_server_serving(monkeypatch, caplog):
     monkeypatch.setattr(hooks, "install", lambda *args: None)
     monkeypatch.setattr(hooks, "start_warm_up", lambda: False)
     monkeypatch.setattr(hooks, "rehearse", broken)
+    monkeypatch.setattr(pn.config, "design", None)  # set by the hook
     with caplog.at_level(logging.ERROR, logger="app.app_hooks"):
         hooks.on_server_loaded(None)
     assert "could not be rehearsed" in caplog.text and "no page" in caplog.text

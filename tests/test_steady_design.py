@@ -127,6 +127,18 @@ def test_canary_panels_design_works_its_parameters_out_at_every_update():
     assert seen["count"] == 4
 
 
+def test_the_servers_start_up_hook_installs_it(monkeypatch):
+    import app.app_hooks as hooks
+
+    monkeypatch.setattr(hooks, "quiet_diagnostics", lambda: False)
+    monkeypatch.setattr(hooks, "install", lambda: True)
+    monkeypatch.setattr(hooks, "start_warm_up", lambda: True)
+    monkeypatch.setattr(pn.config, "authorize_callback", None)
+    monkeypatch.setattr(pn.config, "design", None)
+    hooks.on_server_loaded(None)
+    assert pn.config.design is SteadyNative
+
+
 def test_the_server_uses_it_unless_the_app_chose_a_design():
     with designed(None):
         use_steady_design()

@@ -15,9 +15,12 @@ per update, the calls of ``Design.params`` and the time in them, and the files l
 on disk per update. Here (2026-11-28): reproduced, 1 call and 1 file looked up per
 update, ~0.1 ms of ~0.33 ms per update.
 
-Not worked around in this project: it is inside Panel's update path, which the dashboard
-reaches through public APIs only. A served slider move updates ~4 such components (its
-texts written in place and its address), see ``docs/performance-record.md``.
+Worked around in this project through Panel's public setting ``pn.config.design``: the
+served dashboard's components use ``app.steady_design.SteadyNative``, Panel's ``Native``
+design keeping what ``params`` found per component type and page. A served slider move
+updates ~6-7 components (its texts written in place, its address, the downloads);
+``benchmarks/bench_steady_design.py`` measures a move and a page build with each design,
+``tests/test_steady_design.py`` fails the day Panel keeps the parameters itself.
 """
 import os
 import statistics
