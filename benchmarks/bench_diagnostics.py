@@ -106,9 +106,13 @@ def run(rounds: int = 3, moves: int = 30, seed: int = 5) -> dict:
             "load_average": os.getloadavg()[0], "date": time.strftime("%Y-%m-%d %H:%M")}
 
 
+def spread_text(s: dict, unit: str, digits: int = 2) -> str:
+    """``median [min-max] unit`` of a ``spread``."""
+    return f"{s['median']:.{digits}f} [{s['min']:.{digits}f}-{s['max']:.{digits}f}] {unit}"
+
+
 def text(found: dict) -> str:
-    def f(s, unit, digits=2):
-        return f"{s['median']:.{digits}f} [{s['min']:.{digits}f}-{s['max']:.{digits}f}] {unit}"
+    f = spread_text
     lines = [f"Bokeh's error diagnostics on and off, {found['rounds']} rounds of a page build "
              f"and {found['moves']} slider moves each ({found['date']}, {found['machine']}, "
              f"load {found['load_average']:.1f}); this process's CPU, median [min-max]:"]
@@ -124,9 +128,12 @@ def text(found: dict) -> str:
 QUICK = {"rounds": 1, "moves": 4}
 
 
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--rounds", type=int, default=3, help="rounds, each setting once (3)")
+def rounds_and_moves(description: str, argv, run, text, json_name: str, each: str) -> int:
+    """The command line of a benchmark of page builds and moves in rounds (this one's and
+    ``bench_steady_design.py``'s): ``run(rounds=, moves=)``'s findings written to
+    ``--out``/``json_name`` and printed by ``text``; ``each`` names what a round does once."""
+    ap = argparse.ArgumentParser(description=description)
+    ap.add_argument("--rounds", type=int, default=3, help=f"rounds, {each} once (3)")
     ap.add_argument("--moves", type=int, default=30, help="slider moves per page (30)")
     ap.add_argument("--quick", action="store_true",
                     help=f"{QUICK['rounds']} round of {QUICK['moves']} moves (for CI)")
@@ -137,11 +144,16 @@ def main(argv=None) -> int:
         if value < 1:
             ap.error(f"--{name} {value}: give at least 1")
     found = run(**sizes)
-    path = Path(args.out) / "bench_diagnostics.json"
+    path = Path(args.out) / json_name
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(found, indent=1))
     print(text(found))
     return 0
+
+
+def main(argv=None) -> int:
+    return rounds_and_moves(__doc__.splitlines()[0], argv, run, text,
+                            "bench_diagnostics.json", "each setting")
 
 
 if __name__ == "__main__":

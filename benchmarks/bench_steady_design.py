@@ -16,15 +16,12 @@ all moves for a move. Bokeh's error diagnostics are off, as in the served dashbo
 """
 from __future__ import annotations
 
-import argparse
-import json
 import os
 import platform
 import sys
 import time
-from pathlib import Path
 
-from bench_diagnostics import _moves, _session
+from bench_diagnostics import _moves, _session, rounds_and_moves, spread_text
 from bench_messages import dashboard_page
 from spread import spread
 
@@ -106,8 +103,7 @@ def run(rounds: int = 3, moves: int = 30, seed: int = 5) -> dict:
 
 
 def text(found: dict) -> str:
-    def f(s, unit, digits=2):
-        return f"{s['median']:.{digits}f} [{s['min']:.{digits}f}-{s['max']:.{digits}f}] {unit}"
+    f = spread_text
     lines = [f"Panel's Native design and SteadyNative, {found['rounds']} rounds of a page build "
              f"and {found['moves']} slider moves each ({found['date']}, {found['machine']}, "
              f"load {found['load_average']:.1f}); this process's CPU, median [min-max]:"]
@@ -118,28 +114,9 @@ def text(found: dict) -> str:
     return "\n".join(lines)
 
 
-#: The sizes of ``--quick`` (for CI): one round of a few moves.
-QUICK = {"rounds": 1, "moves": 4}
-
-
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--rounds", type=int, default=3, help="rounds, each design once (3)")
-    ap.add_argument("--moves", type=int, default=30, help="slider moves per page (30)")
-    ap.add_argument("--quick", action="store_true",
-                    help=f"{QUICK['rounds']} round of {QUICK['moves']} moves (for CI)")
-    ap.add_argument("--out", default="bench-out", help="output folder (default bench-out)")
-    args = ap.parse_args(argv)
-    sizes = dict(QUICK) if args.quick else {"rounds": args.rounds, "moves": args.moves}
-    for name, value in sizes.items():
-        if value < 1:
-            ap.error(f"--{name} {value}: give at least 1")
-    found = run(**sizes)
-    path = Path(args.out) / "bench_steady_design.json"
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(json.dumps(found, indent=1))
-    print(text(found))
-    return 0
+    return rounds_and_moves(__doc__.splitlines()[0], argv, run, text,
+                            "bench_steady_design.json", "each design")
 
 
 if __name__ == "__main__":
