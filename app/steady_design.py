@@ -33,7 +33,8 @@ def _is_served() -> bool:
 
 def _copy(params: dict) -> dict:
     """A copy a caller may change (Panel adds to the dict and its lists)."""
-    return {k: list(v) if isinstance(v, list) else v for k, v in params.items()}
+    return {k: list(v) if isinstance(v, list) else dict(v) if isinstance(v, dict) else v
+            for k, v in params.items()}
 
 
 class SteadyNative(Native):
