@@ -29,8 +29,9 @@ from spread import spread
 DESIGNS = ("native", "steady")
 
 
-class _WorkedOut:
-    """Counts the design parameters worked out (``Design._get_modifiers``)."""
+class WorkedOut:
+    """Counts the design parameters worked out (``Design._get_modifiers``); also the
+    tests' count (``tests/test_steady_design.py``)."""
 
     def __init__(self):
         from panel.theme.base import Design
@@ -59,11 +60,6 @@ def _use(design: str) -> None:
     pn.config.design = SteadyNative if design == "steady" else None
 
 
-def _round(design: str, sequence: list) -> dict:
-    _use(design)
-    return _session(sequence)
-
-
 def run(rounds: int = 3, moves: int = 30, seed: int = 5) -> dict:
     import panel as pn
     from bokeh.settings import settings
@@ -80,13 +76,14 @@ def run(rounds: int = 3, moves: int = 30, seed: int = 5) -> dict:
         for design in DESIGNS:  # the design parameters worked out by the moves alone
             _use(design)
             _doc, page = dashboard_page()
-            with _WorkedOut() as worked:
+            with WorkedOut() as worked:
                 for name, value in sequence:
                     page.state.param.update(**{name: value})
             per_move[design] = worked.count / len(sequence)
         for i in range(rounds):
             for design in (DESIGNS if i % 2 == 0 else DESIGNS[::-1]):
-                found[design].append(_round(design, sequence))
+                _use(design)
+                found[design].append(_session(sequence))
     finally:
         settings.perform_error_diagnostics.unset_value()
         pn.config.design = None
