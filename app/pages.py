@@ -6,6 +6,7 @@ Per server process, like the work pool (``app.jobs``): ``page_gate()`` is the on
 from __future__ import annotations
 
 import ctypes
+import os
 import threading
 import time
 
@@ -119,25 +120,61 @@ class PageGate:
         return sum(now - t < self.window_s for t in self._pages.get(client, {}).values())
 
 
+def settle_fraction(text: str | None) -> float:
+    """``SETTLE_FRACTION`` from its setting's text (None: the default, 0.5)."""
+    try:
+        value = float(text) if text is not None else 0.5
+    except ValueError:
+        value = float("nan")
+    if not 0 <= value < float("inf"):
+        raise ValueError(f"MICROPILLAR_SETTLE_FRACTION={text!r}: give a number >= 0 "
+                         "(0 collects at every departure; unset: 0.5)")
+    return value
+
+
 #: Seconds after the last session ended before its memory is handed back to the system.
 RELEASE_DELAY_S = 5.0
+#: Closed pages are collected while others are open only once they are at least this
+#: fraction of the open ones (``settle_due``): the collection pauses the event loop in
+#: proportion to every page still open (~20 ms per page on a quiet 2-core machine), so a
+#: class leaving one by one no longer pauses the others at each departure, and the closed
+#: pages held meanwhile are at most this fraction of the open pages' memory. 0: at every
+#: departure. Set by ``MICROPILLAR_SETTLE_FRACTION`` (docs/deploying.md).
+SETTLE_FRACTION = settle_fraction(os.environ.get("MICROPILLAR_SETTLE_FRACTION"))
 _RELEASE_TIMER: threading.Timer | None = None
 _RELEASE_LOCK = threading.Lock()
+#: Sessions ended since the closed pages were last collected.
+_CLOSED = 0
 
 
-def release_memory(sessions_open=None) -> dict:
+def settle_due(closed: int, still_open: int, fraction: float | None = None) -> bool:
+    """Whether the pages of ``closed`` ended sessions are worth collecting now, with
+    ``still_open`` sessions left: always when none is left (the pause meets no one),
+    else once the closed pages are at least ``fraction`` (default ``SETTLE_FRACTION``)
+    of the open ones."""
+    fraction = SETTLE_FRACTION if fraction is None else fraction
+    return still_open <= 0 or closed >= fraction * still_open
+
+
+def release_memory(sessions_open=None, closed: int | None = None) -> dict:
     """Collect garbage (``app.heap.settle``: the open pages' objects are frozen out of
     the automatic collections) and hand the heap's free pages back to the system (glibc's
     ``malloc_trim``; elsewhere a no-op): CPython's allocator otherwise keeps the memory
     of ended sessions for reuse, and the server stays at its peak after a class left.
 
+    ``closed``: the sessions ended since the last collection; with ``sessions_open``,
+    nothing is done while ``settle_due`` says the closed pages are not yet worth the pause.
     When no session is open any more (``sessions_open()`` is 0) and no work is waiting,
     the shared results are cut down to ``app.result_cache.IDLE_CACHE_BYTES`` and the
     worker processes are replaced by fresh ones (``WorkPool.recycle_workers``), so the
     server and its workers are back near their size at the start. Returns what was done.
     """
-    done = {"idle": False, "recycled": False, "cache_bytes": None}
-    if sessions_open is not None and _count(sessions_open) == 0:
+    done = {"idle": False, "recycled": False, "cache_bytes": None, "settled": False}
+    still_open = _count(sessions_open) if sessions_open is not None else None
+    if closed is not None and still_open is not None and still_open > 0 \
+            and not settle_due(closed, still_open):
+        return done
+    if still_open == 0:
         from .jobs import work_pool
 
         pool = work_pool()
@@ -147,6 +184,7 @@ def release_memory(sessions_open=None) -> dict:
             done["cache_bytes"] = pool.cache.nbytes
             done["recycled"] = pool.recycle_workers()
     settle()  # the closed pages' objects collected (app.heap)
+    done["settled"] = True
     try:
         ctypes.CDLL(None).malloc_trim(0)
     except (OSError, AttributeError):  # not glibc
@@ -162,16 +200,29 @@ def _count(sessions_open) -> int:
 
 
 def schedule_release(sessions_open=None) -> None:
-    """``release_memory(sessions_open)`` once no session has ended for
-    ``RELEASE_DELAY_S`` seconds. ``sessions_open``: how many sessions the server still
-    has (a callable; e.g. ``sessions_of(session_context)``)."""
-    global _RELEASE_TIMER
+    """A session ended: ``release_memory(sessions_open, closed)`` once no session has
+    ended for ``RELEASE_DELAY_S`` seconds (``closed``: the sessions ended since the
+    last collection). ``sessions_open``: how many sessions the server still has (a
+    callable; e.g. ``sessions_of(session_context)``)."""
+    global _RELEASE_TIMER, _CLOSED
     with _RELEASE_LOCK:
+        _CLOSED += 1
         if _RELEASE_TIMER is not None:
             _RELEASE_TIMER.cancel()
-        _RELEASE_TIMER = threading.Timer(RELEASE_DELAY_S, release_memory, (sessions_open,))
+        _RELEASE_TIMER = threading.Timer(RELEASE_DELAY_S, _release_closed, (sessions_open,))
         _RELEASE_TIMER.daemon = True
         _RELEASE_TIMER.start()
+
+
+def _release_closed(sessions_open) -> dict:
+    global _CLOSED
+    with _RELEASE_LOCK:
+        closed = _CLOSED
+    done = release_memory(sessions_open, closed)
+    if done["settled"]:
+        with _RELEASE_LOCK:
+            _CLOSED -= closed  # those ended meanwhile count for the next time
+    return done
 
 
 def sessions_of(session_context):

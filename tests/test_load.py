@@ -54,3 +54,23 @@ def test_the_load_test_serves_with_the_images_allocator():
     assert image == {"PYTHONMALLOC": "malloc", "MALLOC_ARENA_MAX": "2"}
     assert python["PYTHONMALLOC"] == "pymalloc"
     assert "allocator 'jemalloc'" in error
+
+
+def test_the_departures_benchmark_serves_both_settings(tmp_path):
+    """``benchmarks/bench_departures.py --quick``: pages leaving while one works, served
+    with the collection deferred and at every departure; each measured and reported."""
+    import json
+    import subprocess
+
+    root = Path(__file__).resolve().parents[1]
+    done = subprocess.run([sys.executable, "benchmarks/bench_departures.py", "--quick",
+                           "--out", str(tmp_path)], cwd=root, capture_output=True, text=True,
+                          timeout=600)
+    assert done.returncode == 0, done.stderr[-3000:]
+    found = json.loads((tmp_path / "bench_departures.json").read_text())
+    assert list(found["settings"]) == ["deferred (0.5)", "at every departure (0)"]
+    for setting in found["settings"].values():
+        assert setting["liveness"]["n"] > 20 and setting["moves"]["n"] > 5, setting
+        assert setting["rss_mb"] > 50
+    assert "1 of 4 pages leaving one by one" in done.stdout
+    assert "collected at every departure (0): /liveness" in done.stdout
