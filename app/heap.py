@@ -17,7 +17,9 @@ So, with Python's public ``gc.freeze``:
 * ``settle()``: closed pages' objects must be collectable again (their reference cycles
   are freed only by a collection): everything is unfrozen, collected once, and what
   lives is frozen again. The server does it once pages have stopped closing for a few
-  seconds (``app.pages.release_memory``, before it hands the freed memory back), in
+  seconds and the closed pages are worth the pause (``app.pages.settle_due``: none left
+  open, or the closed ones half the open ones; ``app.pages.release_memory``, before it
+  hands the freed memory back), in
   place of the full collection it made there before; Panel's own collection after
   sessions end looks only at what was made since the last freeze.
 """
