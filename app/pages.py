@@ -136,7 +136,8 @@ def settle_fraction(text: str | None) -> float:
 RELEASE_DELAY_S = 5.0
 #: Closed pages are collected while others are open only once they are at least this
 #: fraction of the open ones (``settle_due``): the collection pauses the event loop in
-#: proportion to every page still open (~20 ms per page on a quiet 2-core machine), so a
+#: proportion to every object the server holds (~0.3 s with 4 pages open, up to 1.2 s with
+#: 30 on a quiet 2-core machine, ``benchmarks/bench_departures.py``), so a
 #: class leaving one by one no longer pauses the others at each departure, and the closed
 #: pages held meanwhile are at most this fraction of the open pages' memory. 0: at every
 #: departure. Set by ``MICROPILLAR_SETTLE_FRACTION`` (docs/deploying.md).
