@@ -49,7 +49,8 @@ def test_after_the_last_session_the_workers_are_fresh_and_the_cache_small(server
     pid = server_pool.submit("work", None, _worker_pid).result(timeout=60)
     _fill(server_pool)
     done = pages.release_memory(lambda: 0)
-    assert done == {"idle": True, "recycled": True, "cache_bytes": server_pool.cache.nbytes}
+    assert done == {"idle": True, "recycled": True, "cache_bytes": server_pool.cache.nbytes,
+                    "settled": True}
     assert server_pool.cache.nbytes <= IDLE_CACHE_BYTES
     fresh = server_pool.submit("work", None, _worker_pid).result(timeout=120)
     assert fresh != pid  # a new worker process
