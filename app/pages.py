@@ -172,8 +172,7 @@ def release_memory(sessions_open=None, closed: int | None = None) -> dict:
     """
     done = {"idle": False, "recycled": False, "cache_bytes": None, "settled": False}
     still_open = _count(sessions_open) if sessions_open is not None else None
-    if closed is not None and still_open is not None and still_open > 0 \
-            and not settle_due(closed, still_open):
+    if closed is not None and still_open is not None and not settle_due(closed, still_open):
         return done
     if still_open == 0:
         from .jobs import work_pool
